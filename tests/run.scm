@@ -1,0 +1,15 @@
+;;; Runs every suite: each tests/*-test.scm file, in name order.
+;;; `make test` and `chicken-install -test` both run this file from tests/.
+(import scheme (chicken base) (chicken file) (chicken sort) (chicken platform)
+        (chicken process-context))
+
+;; Under `chicken-install -n -test` nothing is installed: the compiled modules
+;; are in the egg's own directory, one level up. `make test` puts build/ on
+;; CHICKEN_REPOSITORY_PATH itself.
+(unless (get-environment-variable "DOWNSTROKE_MAKE")
+  (repository-path (cons ".." (repository-path))))
+
+(import (downstroke test))
+
+(for-each load (sort (glob "*-test.scm") string<?))
+(test-exit)

@@ -1,0 +1,19 @@
+#!/bin/sh
+# Installs the Debian packages Downstroke builds and tests with, but only the
+# ones that are missing, so `make test` on a ready machine touches nothing.
+set -e
+PACKAGES="chicken-bin libchicken-dev gcc pkg-config libsdl2-dev libsdl2-image-dev
+libsdl2-mixer-dev libsdl2-ttf-dev libexpat1-dev zlib1g-dev libzstd-dev
+fonts-dejavu-core xvfb xauth"
+
+missing=""
+for p in $PACKAGES; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+    missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+
+if [ "$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi
+echo "install-deps: installing$missing"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing
