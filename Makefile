@@ -40,13 +40,12 @@ $(BUILD)/downstroke.%.so: %.scm | $(BUILD)
 	cd $(BUILD) && $(CSC) -s $(CSC_FLAGS) downstroke.$*.import.scm -o downstroke.$*.import.so
 
 # What each module imports from this library (compile-time dependencies).
-$(BUILD)/downstroke.entity.so:    $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
+$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
 
 test: build
 	cd tests && DOWNSTROKE_MAKE=1 csi -q -s run.scm

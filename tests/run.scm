@@ -11,5 +11,14 @@
 
 (import (downstroke test))
 
-(for-each load (sort (glob "*-test.scm") string<?))
+(import (chicken string))
+
+;; DOWNSTROKE_SUITES="physics scene" runs only those suites.
+(define (suite-files)
+  (let ((only (get-environment-variable "DOWNSTROKE_SUITES")))
+    (if only
+        (map (lambda (name) (string-append name "-test.scm")) (string-split only))
+        (sort (glob "*-test.scm") string<?))))
+
+(for-each load (suite-files))
 (test-exit)
