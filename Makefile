@@ -21,13 +21,13 @@ export CHICKEN_REPOSITORY_PATH = $(abspath $(BUILD)):$(CHICKEN_REPO)
 export SDL_VIDEODRIVER ?= dummy
 export SDL_AUDIODRIVER ?= dummy
 
-.PHONY: all deps build test demo bench clean
-all: build
+.PHONY: all deps libs test demo bench clean
+all: libs
 
 deps:
 	@sh tools/install-deps.sh
 
-build: deps
+libs: deps
 	@$(MAKE) --no-print-directory -j2 $(LIBS)
 
 $(BUILD):
@@ -40,22 +40,21 @@ $(BUILD)/downstroke.%.so: %.scm | $(BUILD)
 	cd $(BUILD) && $(CSC) -s $(CSC_FLAGS) downstroke.$*.import.scm -o downstroke.$*.import.so
 
 # What each module imports from this library (compile-time dependencies).
-$(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so
+$(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
-$(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.util.so
+$(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.tilemap.so
+$(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
 $(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
 
-test: build
+test: libs
 	cd tests && DOWNSTROKE_MAKE=1 csi -q -s run.scm
 
 # The platformer demo arrives with the game shell; until then this runs the
 # getting-started scene headless and says so.
-demo: build
+demo: libs
 	csi -q -s demo/getting-started.scm
 
-bench: build
+bench: libs
 	@echo "bench: the benchmark scenes arrive with the speed/accuracy work"
 
 clean:

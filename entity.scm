@@ -74,10 +74,12 @@
                (and (pair? (car x)) (keyword? (caar x)) (loop (cdr x)))))))
 
   ;; Accept either form: a plist starts with a keyword, an alist with a pair.
+  ;; Only the first element is looked at: scenes call this on every entity
+  ;; they are given, every frame.
   (define (as-entity x)
     (cond ((null? x) x)
+          ((and (pair? x) (pair? (car x))) x)
           ((and (pair? x) (keyword? (car x))) (plist->entity x))
-          ((entity? x) x)
           (else (error 'as-entity "not an entity (plist or keyword alist)" x))))
 
   (define (entity-type e) (entity-ref e #:type #f))

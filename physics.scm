@@ -1,0 +1,328 @@
+;;; (downstroke physics): every step of the physics contract.
+;;;
+;;; Units: positions in pixels, velocities in pixels per frame, gravity in
+;;; pixels per frame squared. Per-entity steps have the signature
+;;; (step scene entity dt) and return a new entity; the bulk steps map an
+;;; entity list to an entity list. Numbers may be fixnums, flonums, bignums
+;;; or exact rationals: integer inputs give integer results, and exact
+;;; rationals stay exact. A NaN or infinite position, size or velocity is an
+;;; error naming the entity and the key (see `entity-number`).
+
+(module (downstroke physics)
+  (apply-acceleration apply-gravity apply-velocity-x resolve-tile-collisions-x
+   apply-velocity-y resolve-tile-collisions-y detect-on-solid
+   resolve-entity-collisions sync-groups
+   aabb-overlap? entity-tile-cells entity-cell-span tile-push-pos
+   entity-solid-support-below? tile-support-below? resolve-pair push-apart
+   *gravity* *jump-force* *entity-ground-contact-tolerance* *entity-ground-vy-max*)
+
+  (import scheme (chicken base) (chicken fixnum)
+          (downstroke entity) (downstroke scene) (downstroke tilemap))
+
+  ;;; Constants
+
+  ;; Added to #:vy of gravity entities every frame (px/frame^2).
+  (define *gravity* 1)
+  ;; A jump is #:ay = (- *jump-force*): the first frame of a jump moves up
+  ;; 9 px (10 - gravity), and the body rises 45 px, almost three 16 px tiles,
+  ;; in 9 frames.
+  (define *jump-force* 10)
+  ;; A solid entity whose top is within this many px of a mover's bottom
+  ;; supports it (px).
+  (define *entity-ground-contact-tolerance* 5)
+  ;; A mover falling or rising faster than this (px/frame) is not supported
+  ;; by an entity: it would only be passing through the contact band.
+  (define *entity-ground-vy-max* 12)
+
+  ;;; Reading numbers
+
+  (define (num e key) (entity-number e key 0))
+
+  ;;; Cells covered by a body
+
+  ;; floor(a / d) for an integer a and a positive integer d.
+  (define (floor-div a d)
+    (if (and (fixnum? a) (fixnum? d))
+        (if (fx>= a 0) (fx/ a d) (fx- (fx/ (fx+ a 1) d) 1))
+        (let ((q (quotient a d)))
+          (if (and (negative? a) (not (zero? (remainder a d)))) (- q 1) q))))
+
+  (define (->integer v) (if (exact? v) v (inexact->exact v)))
+
+  ;; The cell index holding coordinate `pos` (tiles of `tile` px).
+  (define (cell-of pos tile)
+    (if (exact-integer? pos)
+        (floor-div pos tile)
+        (->integer (floor (/ pos tile)))))
+
+  ;; The first and last cell a span [pos, pos+size) covers on one axis:
+  ;; floor(pos/T) to ceil((pos+size)/T) - 1, which for integers is the
+  ;; contract's floor((pos+size-1)/T): a body flush with a tile edge does not
+  ;; cover that tile. A zero-size span on a tile edge covers no cell (last <
+  ;; first); elsewhere it covers the one cell it lies in.
+  (define (entity-cell-span pos size tile)
+    (if (and (exact-integer? pos) (exact-integer? size))
+        (values (floor-div pos tile) (floor-div (+ pos size -1) tile))
+        (values (->integer (floor (/ pos tile)))
+                (- (->integer (ceiling (/ (+ pos size) tile))) 1))))
+
+  ;; Every (col . row) cell the entity's AABB covers, row by row.
+  (define (entity-tile-cells entity tilemap)
+    (let-values (((c0 c1) (entity-cell-span (num entity #:x) (num entity #:width)
+                                            (tilemap-tile-width tilemap)))
+                 ((r0 r1) (entity-cell-span (num entity #:y) (num entity #:height)
+                                            (tilemap-tile-height tilemap))))
+      (let rows ((r r1) (out '()))
+        (if (< r r0)
+            out
+            (rows (- r 1)
+                  (let cols ((c c1) (out out))
+                    (if (< c c0) out (cols (- c 1) (cons (cons c r) out)))))))))
+
+  ;; Where a body of `size` ends up when it meets the tile at `coord`:
+  ;; moving forward, its leading edge on the tile's near edge; moving
+  ;; backward, its trailing edge on the tile's far edge.
+  (define (tile-push-pos v coord tile-size entity-size)
+    (if (> v 0)
+        (- (* coord tile-size) entity-size)
+        (* (+ coord 1) tile-size)))
+
+  ;; The nearest line of cells, in the direction of motion, that holds a
+  ;; solid tile: lines `from` .. `to` stepping by `step` (+1 or -1), each line
+  ;; spanning cells lo..hi on the other axis. (solid? line cell) reads the map.
+  ;; Only cells inside the map are visited; outside, every cell is empty.
+  (define (nearest-solid-line solid? from to step lo hi line-count cell-count)
+    (let ((lo (max lo 0)) (hi (min hi (- cell-count 1))))
+      (and (<= lo hi)
+           (let ((from (if (> step 0) (max from 0) (min from (- line-count 1))))
+                 (to (if (> step 0) (min to (- line-count 1)) (max to 0))))
+             (let next-line ((line from))
+               (and (if (> step 0) (<= line to) (>= line to))
+                    (let next-cell ((cell lo))
+                      (cond ((> cell hi) (next-line (+ line step)))
+                            ((solid? line cell) line)
+                            (else (next-cell (+ cell 1)))))))))))
+
+  ;;; Per-entity steps, in pipeline order
+
+  (define-pipeline (apply-acceleration acceleration) (scene entity dt)
+    guard: (entity-ref entity #:gravity? #f)
+    (let ((ay (num entity #:ay)))
+      (entity-set (entity-set entity #:vy (+ (num entity #:vy) ay)) #:ay 0)))
+
+  (define-pipeline (apply-gravity gravity) (scene entity dt)
+    guard: (entity-ref entity #:gravity? #f)
+    (entity-set entity #:vy (+ (num entity #:vy) *gravity*)))
+
+  (define-pipeline (apply-velocity-x velocity-x) (scene entity dt)
+    (entity-set entity #:x (+ (num entity #:x) (num entity #:vx))))
+
+  (define-pipeline (apply-velocity-y velocity-y) (scene entity dt)
+    (entity-set entity #:y (+ (num entity #:y) (num entity #:vy))))
+
+  ;; Both tile passes: pos-key is the axis resolved, across-key the other.
+  ;; A velocity of 0 snaps nothing.
+  (define (resolve-tiles entity pos-key size-key vel-key across-key across-size-key
+                         tile tile-across line-count cell-count solid?)
+    (let ((v (num entity vel-key)))
+      (if (zero? v)
+          entity
+          (let ((pos (num entity pos-key)) (size (num entity size-key)))
+            (let-values (((l0 l1) (entity-cell-span pos size tile))
+                         ((c0 c1) (entity-cell-span (num entity across-key)
+                                                    (num entity across-size-key)
+                                                    tile-across)))
+              (let ((line (if (> v 0)
+                              (nearest-solid-line solid? l0 l1 1 c0 c1 line-count cell-count)
+                              (nearest-solid-line solid? l1 l0 -1 c0 c1 line-count cell-count))))
+                (if (not line)
+                    entity
+                    (entity-set (entity-set entity pos-key (tile-push-pos v line tile size))
+                                vel-key 0))))))))
+
+  (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
+    guard: (scene-tilemap scene)
+    (let ((tm (scene-tilemap scene)))
+      (resolve-tiles entity #:x #:width #:vx #:y #:height
+                     (tilemap-tile-width tm) (tilemap-tile-height tm)
+                     (tilemap-width tm) (tilemap-height tm)
+                     (lambda (col row) (tilemap-solid? tm col row)))))
+
+  (define-pipeline (resolve-tile-collisions-y tile-collisions-y) (scene entity dt)
+    guard: (scene-tilemap scene)
+    (let ((tm (scene-tilemap scene)))
+      (resolve-tiles entity #:y #:height #:vy #:x #:width
+                     (tilemap-tile-height tm) (tilemap-tile-width tm)
+                     (tilemap-height tm) (tilemap-width tm)
+                     (lambda (row col) (tilemap-solid? tm col row)))))
+
+  ;; Tile ground: the row one pixel below the feet, (+ y h 1), under either
+  ;; lower corner. The corners are the first and last columns the body
+  ;; covers; a zero-width body on a tile edge probes the one column at x.
+  (define (tile-support-below? entity tm)
+    (let* ((x (num entity #:x)) (w (num entity #:width))
+           (tw (tilemap-tile-width tm))
+           (row (cell-of (+ (num entity #:y) (num entity #:height) 1)
+                         (tilemap-tile-height tm))))
+      (let-values (((c0 c1) (entity-cell-span x w tw)))
+        (or (tilemap-solid? tm c0 row)
+            (tilemap-solid? tm (max c0 c1) row)))))
+
+  ;; Entity ground: a solid entity other than the mover that overlaps it
+  ;; horizontally, whose top is within the contact tolerance of the mover's
+  ;; bottom, while the mover's |vy| is within *entity-ground-vy-max*.
+  ;; "Other" means not the same object (eq?), as the pipeline passes them.
+  (define (entity-solid-support-below? entity solids)
+    (let* ((x (num entity #:x)) (w (num entity #:width))
+           (bottom (+ (num entity #:y) (num entity #:height))))
+      (and (<= (abs (num entity #:vy)) *entity-ground-vy-max*)
+           (let loop ((solids solids))
+             (and (pair? solids)
+                  (let ((s (car solids)))
+                    (or (and (not (eq? s entity))
+                             (entity-ref s #:solid? #f)
+                             (< x (+ (num s #:x) (num s #:width)))
+                             (< (num s #:x) (+ x w))
+                             (<= (abs (- (num s #:y) bottom))
+                                 *entity-ground-contact-tolerance*))
+                        (loop (cdr solids)))))))))
+
+  (define-pipeline (detect-on-solid on-solid) (scene entity dt)
+    guard: (entity-ref entity #:gravity? #f)
+    (let* ((tm (scene-tilemap scene))
+           (ground? (or (and tm (tile-support-below? entity tm))
+                        (entity-solid-support-below? entity (scene-solid-entities scene)))))
+      (entity-set entity #:on-ground? ground?)))
+
+  ;;; Entity against entity
+
+  ;; Strict overlap: rectangles that only share an edge do not overlap.
+  (define (aabb-overlap? x1 y1 w1 h1 x2 y2 w2 h2)
+    (and (< x1 (+ x2 w2)) (< x2 (+ x1 w1))
+         (< y1 (+ y2 h2)) (< y2 (+ y1 h1))))
+
+  (define (overlap-1d p1 s1 p2 s2)
+    (- (min (+ p1 s1) (+ p2 s2)) (max p1 p2)))
+
+  (define (axis-keys axis)
+    (if (eq? axis 'x) (values #:x #:width #:vx) (values #:y #:height #:vy)))
+
+  ;; Whether `a` goes to the negative side of `b` on the axis: its centre is
+  ;; smaller; with equal centres the later entity of the pair does.
+  (define (goes-negative? a b axis a-is-later?)
+    (let-values (((pos size vel) (axis-keys axis)))
+      (let ((ca (+ (* 2 (num a pos)) (num a size)))
+            (cb (+ (* 2 (num b pos)) (num b size))))
+        (or (< ca cb) (and (= ca cb) a-is-later?)))))
+
+  ;; Move `e` by `delta` on the axis and set that axis's velocity.
+  (define (shift e axis delta velocity)
+    (let-values (((pos size vel) (axis-keys axis)))
+      (entity-set (entity-set e pos (+ (num e pos) delta)) vel velocity)))
+
+  ;; The axis of least penetration; a tie goes to y.
+  (define (shallow-axis a b)
+    (let ((ox (overlap-1d (num a #:x) (num a #:width) (num b #:x) (num b #:width)))
+          (oy (overlap-1d (num a #:y) (num a #:height) (num b #:y) (num b #:height))))
+      (if (< ox oy) (values 'x ox) (values 'y oy))))
+
+  (define (overlap-on a b axis)
+    (let-values (((pos size vel) (axis-keys axis)))
+      (overlap-1d (num a pos) (num a size) (num b pos) (num b size))))
+
+  ;; Two movable bodies: each moves half the overlap away from the other
+  ;; along the shallow axis, with velocity -1 / +1 on that axis.
+  ;; a is the earlier entity of the pair.
+  (define (push-apart a b)
+    (let-values (((axis depth) (shallow-axis a b)))
+      (let ((half (/ depth 2)))
+        (if (goes-negative? a b axis #f)
+            (values (shift a axis (- half) -1) (shift b axis half 1))
+            (values (shift a axis half 1) (shift b axis (- half) -1))))))
+
+  ;; A movable body against an immovable one: the mover alone moves the full
+  ;; overlap, and its velocity on that axis becomes 0. While the mover's
+  ;; centre is above the immovable's, separation is vertical (a landing),
+  ;; so a rider is never shoved sideways off a platform's edge.
+  ;; A mover pushed up off an immovable body rests on it, and is carried by
+  ;; that body's #:vx: a moving platform takes its rider along.
+  (define (push-off mover fixed mover-is-later?)
+    (let-values (((axis depth)
+                  (if (< (+ (* 2 (num mover #:y)) (num mover #:height))
+                         (+ (* 2 (num fixed #:y)) (num fixed #:height)))
+                      (values 'y (overlap-on mover fixed 'y))
+                      (shallow-axis mover fixed))))
+      (let* ((up? (goes-negative? mover fixed axis mover-is-later?))
+             (moved (shift mover axis (if up? (- depth) depth) 0))
+             (carry (num fixed #:vx)))
+        (if (and up? (eq? axis 'y) (not (zero? carry)))
+            (entity-set moved #:x (+ (num moved #:x) carry))
+            moved))))
+
+  (define (collides? e)
+    (and (entity-ref e #:solid? #f)
+         (not (entity-skips-pipeline? e 'entity-collisions))))
+
+  ;; One pair, a before b in the entity list. Returns both, unchanged (eq?)
+  ;; when they do not interact.
+  (define (resolve-pair a b)
+    (if (and (collides? a) (collides? b)
+             (aabb-overlap? (num a #:x) (num a #:y) (num a #:width) (num a #:height)
+                            (num b #:x) (num b #:y) (num b #:width) (num b #:height)))
+        (let ((a-fixed (entity-ref a #:immovable? #f))
+              (b-fixed (entity-ref b #:immovable? #f)))
+          (cond ((and a-fixed b-fixed) (values a b))
+                (a-fixed (values a (push-off b a #t)))
+                (b-fixed (values (push-off a b #f) b))
+                (else (push-apart a b))))
+        (values a b)))
+
+  ;; All pairs i < j in list order; each pair sees the positions left by the
+  ;; pairs before it. Only entities that collide take part, so a scene with
+  ;; fewer than two of them costs one scan and returns the list itself.
+  (define (resolve-entity-collisions entities)
+    (let* ((all (list->vector entities))
+           (idx (let loop ((i (- (vector-length all) 1)) (out '()))
+                  (cond ((< i 0) (list->vector out))
+                        ((collides? (vector-ref all i)) (loop (- i 1) (cons i out)))
+                        (else (loop (- i 1) out)))))
+           (n (vector-length idx)))
+      (if (< n 2)
+          entities
+          (begin
+            (do ((p 0 (fx+ p 1))) ((fx= p n))
+              (do ((q (fx+ p 1) (fx+ q 1))) ((fx= q n))
+                (let ((i (vector-ref idx p)) (j (vector-ref idx q)))
+                  (let-values (((a b) (resolve-pair (vector-ref all i) (vector-ref all j))))
+                    (vector-set! all i a)
+                    (vector-set! all j b)))))
+            (vector->list all)))))
+
+  ;;; Groups
+
+  ;; The first entity with #:group-origin? and a #:group-id is its group's
+  ;; origin; every other entity with that #:group-id is placed at the
+  ;; origin's position plus its #:group-local-x / #:group-local-y.
+  (define (sync-groups entities)
+    (let ((origins
+           (let loop ((es entities) (out '()))
+             (cond ((null? es) out)
+                   ((let ((e (car es)))
+                      (and (entity-ref e #:group-origin? #f)
+                           (entity-ref e #:group-id #f)
+                           (not (assoc (entity-ref e #:group-id #f) out))))
+                    (loop (cdr es) (cons (cons (entity-ref (car es) #:group-id #f) (car es))
+                                         out)))
+                   (else (loop (cdr es) out))))))
+      (if (null? origins)
+          entities
+          (map (lambda (e)
+                 (let* ((id (entity-ref e #:group-id #f))
+                        (origin (and id (assoc id origins))))
+                   (if (and origin (not (eq? (cdr origin) e)))
+                       (let ((o (cdr origin)))
+                         (entity-set
+                          (entity-set e #:x (+ (num o #:x) (num e #:group-local-x)))
+                          #:y (+ (num o #:y) (num e #:group-local-y))))
+                       e)))
+               entities)))))

@@ -1,0 +1,157 @@
+;;; (downstroke scene): a scene is an immutable record of what one screen
+;;; holds: its entities, tilemap, camera, background and engine update.
+;;; Every "change" returns a new scene.
+
+(module (downstroke scene)
+  (make-scene make-sprite-scene update-scene scene?
+   scene-entities scene-tilemap scene-tileset scene-tileset-texture
+   scene-camera scene-camera-target scene-background scene-engine-update
+   scene-solid-entities
+   scene-map-entities scene-transform-entities
+   scene-add-entity scene-remove-entities scene-find-tagged scene-find-all-tagged
+   make-camera camera? camera-x camera-y camera-follow scene-follow-camera)
+
+  (import scheme (chicken base) (chicken format)
+          (downstroke entity) (downstroke tilemap))
+
+  (define-record-type camera
+    (%make-camera x y)
+    camera?
+    (x camera-x)
+    (y camera-y))
+
+  (define (make-camera #!key (x 0) (y 0)) (%make-camera x y))
+
+  ;; `solids` caches the solid entities of this scene's entity list, which
+  ;; ground detection asks for once per gravity entity. It is derived data:
+  ;; every new scene starts without it.
+  (define-record-type scene
+    (%make-scene entities tilemap tileset tileset-texture camera camera-target
+                 background engine-update solids)
+    scene?
+    (entities scene-entities)
+    (tilemap scene-tilemap)
+    (tileset scene-tileset)
+    (tileset-texture scene-tileset-texture)
+    (camera scene-camera)
+    (camera-target scene-camera-target)
+    (background scene-background)
+    (engine-update scene-engine-update)
+    (solids scene-solids-cache scene-solids-cache-set!))
+
+  (define (check-engine-update eu)
+    (unless (or (not eu) (eq? eu 'none) (procedure? eu))
+      (error 'make-scene "engine-update: must be #f, a procedure or 'none" eu))
+    eu)
+
+  (define (check-entities entities)
+    (unless (list? entities)
+      (error 'make-scene "entities: must be a list of entities" entities))
+    (map as-entity entities))
+
+  ;; camera-target: the tag of the entity the camera centres on after each
+  ;; update: ('camera-target unless given), or #f for a camera that stays put.
+  (define (make-scene #!key (entities '()) (tilemap #f) (tileset #f)
+                      (tileset-texture #f) (camera (make-camera))
+                      (camera-target 'camera-target) (background #f)
+                      (engine-update #f))
+    (%make-scene (check-entities entities) tilemap tileset tileset-texture
+                 camera camera-target background
+                 (check-engine-update engine-update) #f))
+
+  ;; A scene with no map: sprites over a background.
+  (define (make-sprite-scene #!key (entities '()) (tileset #f) (tileset-texture #f)
+                             (camera (make-camera)) (camera-target 'camera-target)
+                             (background #f) (engine-update #f))
+    (make-scene entities: entities tileset: tileset tileset-texture: tileset-texture
+                camera: camera camera-target: camera-target background: background
+                engine-update: engine-update))
+
+  ;; A marker for "keyword not given", distinct from every value a user passes.
+  (define unset (list 'unset))
+  (define (given? v) (not (eq? v unset)))
+
+  (define (update-scene s #!key (entities unset) (tilemap unset) (tileset unset)
+                        (tileset-texture unset) (camera unset) (camera-target unset)
+                        (background unset) (engine-update unset))
+    (let ((pick (lambda (new old) (if (given? new) new old))))
+      (%make-scene (if (given? entities) (check-entities entities) (scene-entities s))
+                   (pick tilemap (scene-tilemap s))
+                   (pick tileset (scene-tileset s))
+                   (pick tileset-texture (scene-tileset-texture s))
+                   (pick camera (scene-camera s))
+                   (pick camera-target (scene-camera-target s))
+                   (pick background (scene-background s))
+                   (if (given? engine-update)
+                       (check-engine-update engine-update)
+                       (scene-engine-update s))
+                   ;; the cache survives only when the entity list does
+                   (if (given? entities) #f (scene-solids-cache s)))))
+
+  ;; The same scene holding a new entity list (already entity alists).
+  (define (with-entities s entities)
+    (%make-scene entities (scene-tilemap s) (scene-tileset s) (scene-tileset-texture s)
+                 (scene-camera s) (scene-camera-target s) (scene-background s)
+                 (scene-engine-update s) #f))
+
+  (define (scene-solid-entities s)
+    (or (scene-solids-cache s)
+        (let ((solids (let loop ((es (scene-entities s)) (out '()))
+                        (cond ((null? es) (reverse out))
+                              ((entity-ref (car es) #:solid? #f)
+                               (loop (cdr es) (cons (car es) out)))
+                              (else (loop (cdr es) out))))))
+          (scene-solids-cache-set! s solids)
+          solids)))
+
+  ;; (proc scene entity) -> entity, for every entity; proc sees this scene,
+  ;; i.e. every entity as it was before the map.
+  (define (scene-map-entities s proc)
+    (with-entities s (map (lambda (e) (proc s e)) (scene-entities s))))
+
+  ;; (proc entities) -> entities, over the whole list at once.
+  (define (scene-transform-entities s proc)
+    (let ((out (proc (scene-entities s))))
+      (if (eq? out (scene-entities s)) s (with-entities s out))))
+
+  (define (scene-add-entity s e)
+    (with-entities s (append (scene-entities s) (list (as-entity e)))))
+
+  (define (scene-remove-entities s pred)
+    (with-entities s (let loop ((es (scene-entities s)) (out '()))
+                       (cond ((null? es) (reverse out))
+                             ((pred (car es)) (loop (cdr es) out))
+                             (else (loop (cdr es) (cons (car es) out)))))))
+
+  (define (scene-find-tagged s tag)
+    (let loop ((es (scene-entities s)))
+      (cond ((null? es) #f)
+            ((entity-has-tag? (car es) tag) (car es))
+            (else (loop (cdr es))))))
+
+  (define (scene-find-all-tagged s tag)
+    (let loop ((es (scene-entities s)) (out '()))
+      (cond ((null? es) (reverse out))
+            ((entity-has-tag? (car es) tag) (loop (cdr es) (cons (car es) out)))
+            (else (loop (cdr es) out)))))
+
+  ;; The camera that centres a view of view-w x view-h on `target`, kept
+  ;; inside the map when there is one (a map smaller than the view pins the
+  ;; camera at 0 on that axis). Values stay exact; the renderer rounds.
+  (define (camera-follow camera target view-w view-h tilemap)
+    (define (axis centre view extent)
+      (let ((pos (- centre (/ view 2))))
+        (if extent (max 0 (min pos (- extent view))) pos)))
+    (let ((cx (+ (entity-ref target #:x 0) (/ (entity-ref target #:width 0) 2)))
+          (cy (+ (entity-ref target #:y 0) (/ (entity-ref target #:height 0) 2))))
+      (%make-camera (axis cx view-w (and tilemap (tilemap-pixel-width tilemap)))
+                    (axis cy view-h (and tilemap (tilemap-pixel-height tilemap))))))
+
+  ;; What the engine does after update:, as a pure function of the scene.
+  (define (scene-follow-camera s view-w view-h)
+    (let* ((tag (scene-camera-target s))
+           (target (and tag (scene-find-tagged s tag))))
+      (if target
+          (update-scene s camera: (camera-follow (scene-camera s) target view-w view-h
+                                                 (scene-tilemap s)))
+          s))))

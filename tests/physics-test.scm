@@ -1,0 +1,252 @@
+;;; The physics contract, rule by rule: one group per section of the
+;;; contract, named after it. Integer inputs, exact expected values.
+
+(import scheme (chicken base) (chicken string)
+        (downstroke test) (downstroke entity) (downstroke tilemap)
+        (downstroke scene) (downstroke physics))
+
+(define (ent . plist) (plist->entity plist))
+(define (at e . keys) (map (lambda (k) (entity-ref e k)) keys))
+
+;; A 16 px map from rows of 0/1.
+(define (tiles . rows) (list->tilemap rows))
+(define (scene-with tm . es) (make-scene entities: es tilemap: tm))
+(define no-map (make-scene))
+
+;; An error whose text mentions every one of `words`.
+(define ((mentions . words) exn)
+  (let ((text (error-text exn)))
+    (let loop ((ws words))
+      (or (null? ws) (and (substring-index (car ws) text) (loop (cdr ws)))))))
+
+(test-group "2.1.2 apply-acceleration"
+  (let ((e (ent #:gravity? #t #:vy 3 #:ay -10)))
+    (test "vy becomes vy + ay" '(-7 0) (at (apply-acceleration no-map e 16) #:vy #:ay))
+    (test "ay is consumed once" '(-7 0)
+          (at (apply-acceleration no-map (apply-acceleration no-map e 16) 16) #:vy #:ay)))
+  (test "absent ay counts as 0" '(3 0)
+        (at (apply-acceleration no-map (ent #:gravity? #t #:vy 3) 16) #:vy #:ay))
+  (let ((e (ent #:vy 3 #:ay -10)))
+    (test-assert "guarded by #:gravity?" (eq? e (apply-acceleration no-map e 16))))
+  (let ((e (ent #:gravity? #t #:vy 3 #:ay -10 #:skip-pipelines '(acceleration))))
+    (test-assert "skip symbol acceleration" (eq? e (apply-acceleration no-map e 16)))))
+
+(test-group "2.1.3 apply-gravity"
+  (test "*gravity* is 1" 1 *gravity*)
+  (test "adds gravity to vy" 4 (entity-ref (apply-gravity no-map (ent #:gravity? #t #:vy 3) 16) #:vy))
+  (test "absent vy counts as 0" 1 (entity-ref (apply-gravity no-map (ent #:gravity? #t) 16) #:vy))
+  (let ((e (ent #:vy 3)))
+    (test-assert "guarded by #:gravity?" (eq? e (apply-gravity no-map e 16))))
+  (let ((e (ent #:gravity? #t #:vy 3 #:skip-pipelines '(gravity))))
+    (test-assert "skip symbol gravity" (eq? e (apply-gravity no-map e 16)))))
+
+(test-group "2.1.4 / 2.1.6 apply-velocity-x, apply-velocity-y"
+  (test "x += vx, with no guard" '(13 5) (at (apply-velocity-x no-map (ent #:x 10 #:y 5 #:vx 3) 16) #:x #:y))
+  (test "y += vy, with no guard" '(10 2) (at (apply-velocity-y no-map (ent #:x 10 #:y 5 #:vy -3) 16) #:x #:y))
+  (test "absent velocity moves nothing" 10 (entity-ref (apply-velocity-x no-map (ent #:x 10) 16) #:x))
+  (test "negative coordinates" -7 (entity-ref (apply-velocity-x no-map (ent #:x -4 #:vx -3) 16) #:x))
+  (test "exact rationals stay exact" 2/3 (entity-ref (apply-velocity-x no-map (ent #:x 1/3 #:vx 1/3) 16) #:x))
+  (test "bignums stay exact" (+ (expt 2 70) 1)
+        (entity-ref (apply-velocity-y no-map (ent #:y (expt 2 70) #:vy 1) 16) #:y))
+  (let ((e (ent #:x 1 #:vx 3 #:skip-pipelines '(velocity-x))))
+    (test-assert "skip symbol velocity-x" (eq? e (apply-velocity-x no-map e 16))))
+  (let ((e (ent #:y 1 #:vy 3 #:skip-pipelines '(velocity-y))))
+    (test-assert "skip symbol velocity-y" (eq? e (apply-velocity-y no-map e 16)))))
+
+(test-group "numbers: NaN and infinities are errors naming the key"
+  (test-error "NaN vx" (mentions "#:vx" "player")
+              (apply-velocity-x no-map (ent #:type 'player #:x 0 #:vx +nan.0) 16))
+  (test-error "infinite y" (mentions "#:y" "crate")
+              (apply-velocity-y no-map (ent #:type 'crate #:y -inf.0 #:vy 1) 16))
+  (test-error "a string width" (mentions "#:width")
+              (resolve-tile-collisions-x (scene-with (tiles '(1)) ) (ent #:x 0 #:y 0 #:width "wide" #:height 1 #:vx 1) 16))
+  (test "finite flonums pass" 1.5 (entity-ref (apply-velocity-x no-map (ent #:x 1.0 #:vx 0.5) 16) #:x)))
+
+(test-group "2.4.1 cells covered by a body (entity-tile-cells)"
+  (let ((tm (tiles '(0 0 0) '(0 0 0))))
+    (test "a 10x10 body at (10,10) covers four cells" '((0 . 0) (1 . 0) (0 . 1) (1 . 1))
+          (entity-tile-cells (ent #:x 10 #:y 10 #:width 10 #:height 10) tm))
+    (test "flush with a tile edge does not cover the next tile" '((0 . 0))
+          (entity-tile-cells (ent #:x 0 #:y 0 #:width 16 #:height 16) tm))
+    (test "negative coordinates use floor division" '((-1 . -1) (0 . -1))
+          (entity-tile-cells (ent #:x -5 #:y -16 #:width 10 #:height 16) tm)))
+  (let-values (((a b) (entity-cell-span -17 1 16))) (test "floor(-17/16)" '(-2 -2) (list a b)))
+  (let-values (((a b) (entity-cell-span -16 16 16))) (test "[-16,0) is cell -1" '(-1 -1) (list a b)))
+  (let-values (((a b) (entity-cell-span 31/2 1/2 16))) (test "fraction ending on an edge" '(0 0) (list a b)))
+  (let-values (((a b) (entity-cell-span 31/2 1 16))) (test "fraction crossing an edge" '(0 1) (list a b)))
+  (let-values (((a b) (entity-cell-span 15.5 0.5 16))) (test "flonums give exact cells" '(0 0) (list a b)))
+  (let-values (((a b) (entity-cell-span 32 0 16))) (test "zero size on an edge covers nothing" '(2 1) (list a b)))
+  (let-values (((a b) (entity-cell-span 33 0 16))) (test "zero size inside a cell covers it" '(2 2) (list a b)))
+  (test "tile-push-pos forward" 38 (tile-push-pos 5 3 16 10))
+  (test "tile-push-pos backward" 64 (tile-push-pos -5 3 16 10)))
+
+(test-group "2.1.5 resolve-tile-collisions-x"
+  (let ((s (scene-with (tiles '(0 0 0 1 0) '(0 0 0 1 0) '(0 0 0 1 0)))))
+    (test "moving right: right edge onto the tile's near side, vx 0" '(38 0)
+          (at (resolve-tile-collisions-x s (ent #:x 40 #:y 16 #:width 10 #:height 10 #:vx 5) 16) #:x #:vx))
+    (test "moving left: left edge onto the tile's far side, vx 0" '(64 0)
+          (at (resolve-tile-collisions-x s (ent #:x 60 #:y 16 #:width 10 #:height 10 #:vx -5) 16) #:x #:vx))
+    (let ((e (ent #:x 38 #:y 16 #:width 10 #:height 10 #:vx 5)))
+      (test-assert "flush with the wall: no collision" (eq? e (resolve-tile-collisions-x s e 16))))
+    (let ((e (ent #:x 40 #:y 16 #:width 10 #:height 10 #:vx 0)))
+      (test-assert "vx 0 snaps nothing" (eq? e (resolve-tile-collisions-x s e 16))))
+    (let ((e (ent #:x 40 #:y 16 #:width 10 #:height 10 #:vx 5 #:skip-pipelines '(tile-collisions-x))))
+      (test-assert "skip symbol tile-collisions-x" (eq? e (resolve-tile-collisions-x s e 16))))
+    (test "exact rational positions and sizes" '(75/2 0)
+          (at (resolve-tile-collisions-x s (ent #:x 95/2 #:y 16 #:width 21/2 #:height 10 #:vx 1/2) 16) #:x #:vx))
+    (test "y is untouched" 16
+          (entity-ref (resolve-tile-collisions-x s (ent #:x 40 #:y 16 #:width 10 #:height 10 #:vx 5) 16) #:y)))
+  (let ((s (scene-with (tiles '(0 0 1 1 0)))))
+    (test "moving right stops at the nearest solid column" 2
+          (entity-ref (resolve-tile-collisions-x s (ent #:x 30 #:y 0 #:width 30 #:height 10 #:vx 1) 16) #:x))
+    (test "moving left stops at the nearest solid column" 64
+          (entity-ref (resolve-tile-collisions-x s (ent #:x 30 #:y 0 #:width 30 #:height 10 #:vx -1) 16) #:x)))
+  (let ((e (ent #:x 40 #:y 16 #:width 10 #:height 10 #:vx 5)))
+    (test-assert "guarded by the scene's tilemap" (eq? e (resolve-tile-collisions-x no-map e 16))))
+  (let ((s (scene-with (tiles '(1 1) '(1 1)))))
+    (test "cells outside the map are empty" -40
+          (entity-ref (resolve-tile-collisions-x s (ent #:x -40 #:y 0 #:width 10 #:height 10 #:vx 5) 16) #:x))))
+
+(test-group "2.1.7 resolve-tile-collisions-y"
+  (let ((floor (scene-with (tiles '(0 0 0) '(0 0 0) '(1 1 1))))
+        (ceiling (scene-with (tiles '(1 1 1) '(0 0 0) '(0 0 0)))))
+    (test "moving down: feet onto the floor's top, vy 0" '(22 0)
+          (at (resolve-tile-collisions-y floor (ent #:x 0 #:y 28 #:width 10 #:height 10 #:vy 5) 16) #:y #:vy))
+    (test "moving up: head onto the ceiling's bottom, vy 0" '(16 0)
+          (at (resolve-tile-collisions-y ceiling (ent #:x 0 #:y 10 #:width 10 #:height 10 #:vy -4) 16) #:y #:vy))
+    (let ((e (ent #:x 0 #:y 22 #:width 10 #:height 10 #:vy 5)))
+      (test-assert "flush on the floor: no collision" (eq? e (resolve-tile-collisions-y floor e 16))))
+    (let ((e (ent #:x 0 #:y 28 #:width 10 #:height 10 #:vy 0)))
+      (test-assert "vy 0 snaps nothing" (eq? e (resolve-tile-collisions-y floor e 16))))
+    (let ((e (ent #:x 0 #:y 28 #:width 10 #:height 10 #:vy 5 #:skip-pipelines '(tile-collisions-y))))
+      (test-assert "skip symbol tile-collisions-y" (eq? e (resolve-tile-collisions-y floor e 16))))
+    (test "x is untouched" 0
+          (entity-ref (resolve-tile-collisions-y floor (ent #:x 0 #:y 28 #:width 10 #:height 10 #:vy 5) 16) #:x)))
+  (let ((s (scene-with (tiles '(0) '(1) '(1) '(0)))))
+    (test "moving down stops at the nearest solid row" -24
+          (entity-ref (resolve-tile-collisions-y s (ent #:x 0 #:y 10 #:width 10 #:height 40 #:vy 1) 16) #:y))
+    (test "moving up stops at the nearest solid row" 48
+          (entity-ref (resolve-tile-collisions-y s (ent #:x 0 #:y 10 #:width 10 #:height 40 #:vy -1) 16) #:y))))
+
+(test-group "2.1.8 detect-on-solid: tile ground"
+  (let ((s (scene-with (tiles '(0 0 0) '(0 0 0) '(1 1 1)))))
+    (test "standing flush on the floor" #t
+          (entity-ref (detect-on-solid s (ent #:gravity? #t #:x 0 #:y 22 #:width 10 #:height 10) 16) #:on-ground?))
+    (test "one pixel above the floor still counts (probe at y+h+1)" #t
+          (entity-ref (detect-on-solid s (ent #:gravity? #t #:x 0 #:y 21 #:width 10 #:height 10) 16) #:on-ground?))
+    (test "two pixels above does not" #f
+          (entity-ref (detect-on-solid s (ent #:gravity? #t #:x 0 #:y 20 #:width 10 #:height 10) 16) #:on-ground?))
+    (test "in the air: #:on-ground? is written #f" #f
+          (entity-ref (detect-on-solid s (ent #:gravity? #t #:on-ground? #t #:x 0 #:y 0 #:width 10 #:height 10) 16)
+                      #:on-ground? 'absent))
+    (let ((e (ent #:x 0 #:y 22 #:width 10 #:height 10)))
+      (test-assert "guarded by #:gravity?" (eq? e (detect-on-solid s e 16))))
+    (let ((e (ent #:gravity? #t #:x 0 #:y 22 #:width 10 #:height 10 #:skip-pipelines '(on-solid))))
+      (test-assert "skip symbol on-solid" (eq? e (detect-on-solid s e 16)))))
+  (let ((left (scene-with (tiles '(0 0 0) '(0 0 0) '(1 0 0))))
+        (right (scene-with (tiles '(0 0 0) '(0 0 0) '(0 1 0)))))
+    (test "the lower-left corner over a tile" #t
+          (entity-ref (detect-on-solid left (ent #:gravity? #t #:x 10 #:y 22 #:width 10 #:height 10) 16) #:on-ground?))
+    (test "the lower-right corner over a tile" #t
+          (entity-ref (detect-on-solid right (ent #:gravity? #t #:x 10 #:y 22 #:width 10 #:height 10) 16) #:on-ground?))
+    (test "neither corner over a tile" #f
+          (entity-ref (detect-on-solid left (ent #:gravity? #t #:x 16 #:y 22 #:width 10 #:height 10) 16) #:on-ground?))))
+
+(test-group "2.1.8 detect-on-solid: entity ground"
+  (define (player . more)
+    (apply ent #:type 'player #:gravity? #t #:x 0 #:y 0 #:width 10 #:height 10 more))
+  (define (platform x y . more)
+    (apply ent #:type 'platform #:solid? #t #:x x #:y y #:width 20 #:height 5 more))
+  (define (grounded? p s) (entity-solid-support-below? p (list s)))
+  (test "tolerance is 5 px" 5 *entity-ground-contact-tolerance*)
+  (test "vy limit is 12" 12 *entity-ground-vy-max*)
+  (test-assert "top 3 px below the feet" (grounded? (player) (platform 5 13)))
+  (test-assert "top exactly 5 px below" (grounded? (player) (platform 5 15)))
+  (test-assert "top 6 px below is too far" (not (grounded? (player) (platform 5 16))))
+  (test-assert "top 5 px above the feet (inside the body)" (grounded? (player) (platform 5 5)))
+  (test-assert "top 6 px above is too far" (not (grounded? (player) (platform 5 4))))
+  (test-assert "touching edges is no horizontal overlap" (not (grounded? (player) (platform 10 10))))
+  (test-assert "|vy| = 12 is supported" (grounded? (player #:vy 12) (platform 5 10)))
+  (test-assert "vy = 13 is falling too fast" (not (grounded? (player #:vy 13) (platform 5 10))))
+  (test-assert "vy = -13 is rising too fast" (not (grounded? (player #:vy -13) (platform 5 10))))
+  (test-assert "a non-solid entity is no ground"
+               (not (grounded? (player) (ent #:x 5 #:y 10 #:width 20 #:height 5))))
+  (let ((tiny (ent #:gravity? #t #:solid? #t #:x 0 #:y 0 #:width 4 #:height 4)))
+    (test-assert "an entity is not its own ground" (not (entity-solid-support-below? tiny (list tiny)))))
+  (let ((s (make-scene entities: (list (platform 5 10)))))
+    (test "through the scene, with no tilemap" #t
+          (entity-ref (detect-on-solid s (player) 16) #:on-ground?))))
+
+(test-group "2.4.4 aabb-overlap?"
+  (test-assert "overlapping" (aabb-overlap? 0 0 10 10 5 5 10 10))
+  (test-assert "sharing an edge is not overlapping" (not (aabb-overlap? 0 0 10 10 10 0 10 10)))
+  (test-assert "sharing a corner is not overlapping" (not (aabb-overlap? 0 0 10 10 10 10 10 10)))
+  (test-assert "contained" (aabb-overlap? 0 0 10 10 2 2 1 1))
+  (test-assert "apart on y" (not (aabb-overlap? 0 0 10 10 0 20 10 10))))
+
+(test-group "2.4.2 resolve-entity-collisions"
+  (define (box x y . more) (apply ent #:solid? #t #:x x #:y y #:width 10 #:height 10 more))
+  (define (pair-result a b) (let-values (((a b) (resolve-pair a b))) (list a b)))
+  (let ((r (pair-result (box 0 0) (box 6 2))))
+    (test "neither immovable: half the overlap each along x (the shallow axis)"
+          '((-2 0 -1) (8 2 1))
+          (map (lambda (e) (at e #:x #:y #:vx)) r)))
+  (let ((r (pair-result (box 0 0) (box 7 2))))
+    (test "an odd overlap splits into exact halves" '(-3/2 17/2) (map (lambda (e) (entity-ref e #:x)) r)))
+  (let ((r (pair-result (box 0 0) (box 6 6))))
+    (test "equal overlaps: the push goes along y" '((0 -2 -1) (6 8 1))
+          (map (lambda (e) (at e #:x #:y #:vy)) r)))
+  (let ((r (pair-result (box 0 0 #:type 'first) (box 0 0 #:type 'second))))
+    (test "equal centres: the later entity goes to the negative side" '((5 1) (-5 -1))
+          (map (lambda (e) (at e #:y #:vy)) r)))
+  (let ((a (box 0 0 #:immovable? #t)) (b (box 5 5 #:immovable? #t)))
+    (test-assert "both immovable: skipped"
+                 (let-values (((a2 b2) (resolve-pair a b))) (and (eq? a a2) (eq? b b2)))))
+  (let ((a (box 0 0 #:skip-pipelines '(entity-collisions))) (b (box 5 5)))
+    (test-assert "either skipping entity-collisions: skipped"
+                 (let-values (((a2 b2) (resolve-pair a b))) (and (eq? a a2) (eq? b b2))))
+    (test-assert "... in either position"
+                 (let-values (((b2 a2) (resolve-pair b a))) (and (eq? a a2) (eq? b b2)))))
+  (let ((a (box 0 0)) (b (ent #:x 5 #:y 5 #:width 10 #:height 10)))
+    (test-assert "a non-solid entity takes no part"
+                 (let-values (((a2 b2) (resolve-pair a b))) (and (eq? a a2) (eq? b b2)))))
+  (let ((r (pair-result (box 0 0 #:vy 3)
+                        (ent #:solid? #t #:immovable? #t #:x 9 #:y 8 #:width 40 #:height 8))))
+    (test "landing: mover above the immovable's centre is pushed up, not sideways"
+          '(0 -2 0) (at (car r) #:x #:y #:vy))
+    (test "the immovable one does not move" '(9 8) (at (cadr r) #:x #:y)))
+  (let ((r (pair-result (box 0 10 #:vx 4)
+                        (ent #:solid? #t #:immovable? #t #:x 8 #:y 0 #:width 10 #:height 20))))
+    (test "one immovable, mover below its centre: full overlap on the shallow axis, velocity 0"
+          '(-2 10 0) (at (car r) #:x #:y #:vx)))
+  (let ((r (pair-result (ent #:solid? #t #:immovable? #t #:x 0 #:y 0 #:width 10 #:height 10)
+                        (box 0 0 #:vy 2))))
+    (test "one immovable, equal centres: the later mover goes negative" '(-10 0)
+          (at (cadr r) #:y #:vy)))
+  (let ((r (pair-result (box 10 0 #:vy 1)
+                        (ent #:solid? #t #:immovable? #t #:vx 3 #:x 0 #:y 9 #:width 48 #:height 8))))
+    (test "a rider pushed up off a moving immovable is carried by its vx" '(13 -1 0)
+          (at (car r) #:x #:y #:vy)))
+  (let ((es (list (box 0 0) (box 8 0) (box 18 0))))
+    (test "pairs in order, each seeing earlier pushes"
+          '((-1 -1) (17/2 -1) (37/2 1))
+          (map (lambda (e) (at e #:x #:vx)) (resolve-entity-collisions es))))
+  (let ((es (list (box 0 0) (ent #:x 5 #:y 5 #:width 10 #:height 10))))
+    (test-assert "fewer than two solid entities: the list itself comes back"
+                 (eq? es (resolve-entity-collisions es)))))
+
+(test-group "2.1.10 sync-groups"
+  (let* ((es (list (ent #:type 'boss #:x 100 #:y 50 #:group-id 'boss #:group-origin? #t)
+                   (ent #:type 'arm #:x 0 #:y 0 #:group-id 'boss #:group-local-x 10 #:group-local-y 20)
+                   (ent #:type 'second-origin #:x 0 #:y 0 #:group-id 'boss #:group-origin? #t
+                        #:group-local-x 5)
+                   (ent #:type 'orphan #:x 7 #:y 7 #:group-id 'nobody)
+                   (ent #:type 'loner #:x 1 #:y 2)))
+         (out (sync-groups es)))
+    (test "members snap to origin + local offset" '(110 70) (at (list-ref out 1) #:x #:y))
+    (test "the first origin wins; a later one is a member" '(105 50) (at (list-ref out 2) #:x #:y))
+    (test "the origin itself does not move" '(100 50) (at (car out) #:x #:y))
+    (test-assert "a group with no origin is left alone" (eq? (list-ref es 3) (list-ref out 3)))
+    (test-assert "an entity without a group is left alone" (eq? (list-ref es 4) (list-ref out 4))))
+  (let ((es (list (ent #:x 1) (ent #:x 2))))
+    (test-assert "no groups: the list itself comes back" (eq? es (sync-groups es)))))
