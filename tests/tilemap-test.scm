@@ -1,0 +1,40 @@
+;;; (downstroke tilemap), in-memory part: list->tilemap, cells, sizes.
+
+(import scheme (chicken base) (downstroke test) (downstroke tilemap) srfi-4)
+
+(test-group "list->tilemap"
+  (let ((tm (list->tilemap '((0 1 2) (3 0 5)) tile-width: 8 tile-height: 4)))
+    (test "width in tiles" 3 (tilemap-width tm))
+    (test "height in tiles" 2 (tilemap-height tm))
+    (test "tile size" '(8 4) (list (tilemap-tile-width tm) (tilemap-tile-height tm)))
+    (test "size in pixels" '(24 8) (list (tilemap-pixel-width tm) (tilemap-pixel-height tm)))
+    (test "cells by column and row" '(0 1 2 3 0 5)
+          (list (tilemap-tile-at tm 0 0) (tilemap-tile-at tm 1 0) (tilemap-tile-at tm 2 0)
+                (tilemap-tile-at tm 0 1) (tilemap-tile-at tm 1 1) (tilemap-tile-at tm 2 1)))
+    (test "outside the map is 0" '(0 0 0 0)
+          (list (tilemap-tile-at tm -1 0) (tilemap-tile-at tm 3 0)
+                (tilemap-tile-at tm 0 -1) (tilemap-tile-at tm 0 2)))
+    (test "far outside (bignum) is 0" 0 (tilemap-tile-at tm (expt 2 80) 0))
+    (test "solid cells are the non-zero ones" '(#f #t #t #f)
+          (list (tilemap-solid? tm 0 0) (tilemap-solid? tm 1 0)
+                (tilemap-solid? tm 2 0) (tilemap-solid? tm 1 1)))
+    (test "outside is not solid" #f (tilemap-solid? tm -1 -1))
+    (test "one layer" 1 (length (tilemap-layers tm))))
+  (test "default tile size is 16" 16 (tilemap-tile-width (list->tilemap '((1)))))
+  (test-error "ragged rows" (list->tilemap '((0 1) (1))))
+  (test-error "a negative tile id" (list->tilemap '((0 -1))))
+  (test-error "a non-integer tile id" (list->tilemap '((0 x)))))
+
+(test-group "layers and collision"
+  (let* ((ground (make-layer "ground" 2 1 (u32vector 1 0)))
+         (deco (make-layer "deco" 2 1 (u32vector 0 9) properties: '(("collides" . #f))))
+         (walls (make-layer "walls" 2 1 (u32vector 0 0)))
+         (tm (make-tilemap 2 1 16 16 (list ground deco walls))))
+    (test "a layer by name" 9 (tilemap-tile-at tm 1 0 "deco"))
+    (test "a layer by index" 9 (tilemap-tile-at tm 1 0 1))
+    (test "a layer marked collides=#f does not collide" '(#t #f)
+          (list (tilemap-solid? tm 0 0) (tilemap-solid? tm 1 0)))
+    (test-error "no such layer" (tilemap-tile-at tm 0 0 "sky")))
+  (test-error "a layer of the wrong size"
+              (make-tilemap 3 1 16 16 (list (make-layer "a" 2 1 (u32vector 0 0)))))
+  (test-error "data of the wrong length" (make-layer "a" 2 2 (u32vector 0 0))))
