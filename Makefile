@@ -27,8 +27,11 @@ all: libs
 deps:
 	@sh tools/install-deps.sh
 
-libs: deps
-	@$(MAKE) --no-print-directory -j2 $(LIBS)
+# Two cores: build two modules at a time.
+MAKEFLAGS += -j2
+
+libs: $(LIBS)
+$(LIBS): | deps
 
 $(BUILD):
 	mkdir -p $(BUILD)
