@@ -16,7 +16,7 @@
    entity-solid-support-below? tile-support-below? resolve-pair push-apart
    *gravity* *jump-force* *entity-ground-contact-tolerance* *entity-ground-vy-max*)
 
-  (import scheme (chicken base) (chicken fixnum)
+  (import scheme (chicken base) (chicken fixnum) (chicken format)
           (downstroke entity) (downstroke scene) (downstroke tilemap))
 
   ;;; Constants
@@ -120,21 +120,41 @@
   (define-pipeline (apply-velocity-y velocity-y) (scene entity dt)
     (entity-set entity #:y (+ (num entity #:y) (num entity #:vy))))
 
+  ;; Which tile step an entity gets: its own #:collision-mode, else the
+  ;; scene's.
+  ;;   discrete  the contract's step: the cells the body covers after moving.
+  ;;   swept     also the cells it crossed on the way: the scan starts where
+  ;;             the body was before this frame's move (pos - v), so no wall
+  ;;             is passed at any speed. Wherever the discrete step does not
+  ;;             pass a wall, both give the same result.
+  (define (swept? scene entity)
+    (case (or (entity-ref entity #:collision-mode #f) (scene-collision-mode scene))
+      ((swept) #t)
+      ((discrete) #f)
+      (else (error 'downstroke
+                   (sprintf "entity ~a: #:collision-mode is ~s, not discrete or swept"
+                            (entity-label entity) (entity-ref entity #:collision-mode #f))))))
+
   ;; Both tile passes: pos-key is the axis resolved, across-key the other.
   ;; A velocity of 0 snaps nothing.
-  (define (resolve-tiles entity pos-key size-key vel-key across-key across-size-key
+  (define (resolve-tiles entity swept pos-key size-key vel-key across-key across-size-key
                          tile tile-across line-count cell-count solid?)
     (let ((v (num entity vel-key)))
       (if (zero? v)
           entity
           (let ((pos (num entity pos-key)) (size (num entity size-key)))
             (let-values (((l0 l1) (entity-cell-span pos size tile))
+                         ((s0 s1) (if swept
+                                      (entity-cell-span (- pos v) size tile)
+                                      (values #f #f)))
                          ((c0 c1) (entity-cell-span (num entity across-key)
                                                     (num entity across-size-key)
                                                     tile-across)))
               (let ((line (if (> v 0)
-                              (nearest-solid-line solid? l0 l1 1 c0 c1 line-count cell-count)
-                              (nearest-solid-line solid? l1 l0 -1 c0 c1 line-count cell-count))))
+                              (nearest-solid-line solid? (if swept (min s0 l0) l0) l1 1
+                                                  c0 c1 line-count cell-count)
+                              (nearest-solid-line solid? (if swept (max s1 l1) l1) l0 -1
+                                                  c0 c1 line-count cell-count))))
                 (if (not line)
                     entity
                     (entity-set (entity-set entity pos-key (tile-push-pos v line tile size))
@@ -143,7 +163,7 @@
   (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
     guard: (scene-tilemap scene)
     (let ((tm (scene-tilemap scene)))
-      (resolve-tiles entity #:x #:width #:vx #:y #:height
+      (resolve-tiles entity (swept? scene entity) #:x #:width #:vx #:y #:height
                      (tilemap-tile-width tm) (tilemap-tile-height tm)
                      (tilemap-width tm) (tilemap-height tm)
                      (lambda (col row) (tilemap-solid? tm col row)))))
@@ -151,7 +171,7 @@
   (define-pipeline (resolve-tile-collisions-y tile-collisions-y) (scene entity dt)
     guard: (scene-tilemap scene)
     (let ((tm (scene-tilemap scene)))
-      (resolve-tiles entity #:y #:height #:vy #:x #:width
+      (resolve-tiles entity (swept? scene entity) #:y #:height #:vy #:x #:width
                      (tilemap-tile-height tm) (tilemap-tile-width tm)
                      (tilemap-height tm) (tilemap-width tm)
                      (lambda (row col) (tilemap-solid? tm col row)))))

@@ -6,6 +6,7 @@
   (make-scene make-sprite-scene update-scene scene?
    scene-entities scene-tilemap scene-tileset scene-tileset-texture
    scene-camera scene-camera-target scene-background scene-engine-update
+   scene-collision-mode *default-collision-mode*
    scene-solid-entities
    scene-map-entities scene-transform-entities
    scene-add-entity scene-remove-entities scene-find-tagged scene-find-all-tagged
@@ -27,7 +28,7 @@
   ;; every new scene starts without it.
   (define-record-type scene
     (%make-scene entities tilemap tileset tileset-texture camera camera-target
-                 background engine-update solids)
+                 background engine-update collision-mode solids)
     scene?
     (entities scene-entities)
     (tilemap scene-tilemap)
@@ -37,6 +38,7 @@
     (camera-target scene-camera-target)
     (background scene-background)
     (engine-update scene-engine-update)
+    (collision-mode scene-collision-mode)
     (solids scene-solids-cache scene-solids-cache-set!))
 
   (define (check-engine-update eu)
@@ -44,20 +46,30 @@
       (error 'make-scene "engine-update: must be #f, a procedure or 'none" eu))
     eu)
 
+  (define (check-collision-mode mode)
+    (unless (memq mode '(discrete swept))
+      (error 'make-scene "collision-mode: must be 'discrete or 'swept" mode))
+    mode)
+
   (define (check-entities entities)
     (unless (list? entities)
       (error 'make-scene "entities: must be a list of entities" entities))
     (map as-entity entities))
+
+  ;; How tile collisions are resolved unless a scene or an entity says
+  ;; otherwise (see physics.scm and docs/physics.org).
+  (define *default-collision-mode* 'discrete)
 
   ;; camera-target: the tag of the entity the camera centres on after each
   ;; update: ('camera-target unless given), or #f for a camera that stays put.
   (define (make-scene #!key (entities '()) (tilemap #f) (tileset #f)
                       (tileset-texture #f) (camera (make-camera))
                       (camera-target 'camera-target) (background #f)
-                      (engine-update #f))
+                      (engine-update #f) (collision-mode *default-collision-mode*))
     (%make-scene (check-entities entities) tilemap tileset tileset-texture
                  camera camera-target background
-                 (check-engine-update engine-update) #f))
+                 (check-engine-update engine-update)
+                 (check-collision-mode collision-mode) #f))
 
   ;; A scene with no map: sprites over a background.
   (define (make-sprite-scene #!key (entities '()) (tileset #f) (tileset-texture #f)
@@ -65,7 +77,7 @@
                              (background #f) (engine-update #f))
     (make-scene entities: entities tileset: tileset tileset-texture: tileset-texture
                 camera: camera camera-target: camera-target background: background
-                engine-update: engine-update))
+                engine-update: engine-update collision-mode: *default-collision-mode*))
 
   ;; A marker for "keyword not given", distinct from every value a user passes.
   (define unset (list 'unset))
@@ -73,7 +85,7 @@
 
   (define (update-scene s #!key (entities unset) (tilemap unset) (tileset unset)
                         (tileset-texture unset) (camera unset) (camera-target unset)
-                        (background unset) (engine-update unset))
+                        (background unset) (engine-update unset) (collision-mode unset))
     (let ((pick (lambda (new old) (if (given? new) new old))))
       (%make-scene (if (given? entities) (check-entities entities) (scene-entities s))
                    (pick tilemap (scene-tilemap s))
@@ -85,6 +97,9 @@
                    (if (given? engine-update)
                        (check-engine-update engine-update)
                        (scene-engine-update s))
+                   (if (given? collision-mode)
+                       (check-collision-mode collision-mode)
+                       (scene-collision-mode s))
                    ;; the cache survives only when the entity list does
                    (if (given? entities) #f (scene-solids-cache s)))))
 
@@ -92,7 +107,7 @@
   (define (with-entities s entities)
     (%make-scene entities (scene-tilemap s) (scene-tileset s) (scene-tileset-texture s)
                  (scene-camera s) (scene-camera-target s) (scene-background s)
-                 (scene-engine-update s) #f))
+                 (scene-engine-update s) (scene-collision-mode s) #f))
 
   (define (scene-solid-entities s)
     (or (scene-solids-cache s)
