@@ -57,8 +57,14 @@ test: libs
 demo: libs
 	csi -q -s demo/getting-started.scm
 
-bench: libs
-	@echo "bench: the benchmark scenes arrive with the speed/accuracy work"
+# The scenes of bench-spec.md, compiled like a game would be.
+# RUNS=3 runs per scene instance (medians); BENCH_ARGS="S1 --quick" narrows.
+RUNS ?= 3
+$(BUILD)/bench-scenes: bench/scenes.scm $(LIBS)
+	cd $(BUILD) && $(CSC) $(CSC_FLAGS) ../bench/scenes.scm -o bench-scenes
+
+bench: libs $(BUILD)/bench-scenes
+	$(BUILD)/bench-scenes --runs $(RUNS) --csv bench/results.csv $(BENCH_ARGS)
 
 clean:
 	rm -rf $(BUILD)

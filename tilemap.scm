@@ -15,7 +15,8 @@
    tilemap-width tilemap-height tilemap-tile-width tilemap-tile-height
    tilemap-pixel-width tilemap-pixel-height
    tilemap-layers tilemap-layer tilemap-properties
-   tilemap-tile-at tilemap-solid?
+   tilemap-tile-at tilemap-solid? tilemap-solid-grid
+   tilemap-origin-col tilemap-origin-row
    make-layer layer? layer-name layer-width layer-height layer-data
    layer-visible? layer-properties layer-collides?)
 
@@ -99,6 +100,10 @@
           (loop (cdr rows) (+ j 1))))
       (make-tilemap width height tile-width tile-height
                     (list (make-layer name width height data)))))
+
+  ;; The top-left cell: 0, 0 for a finite map.
+  (define (tilemap-origin-col tm) 0)
+  (define (tilemap-origin-row tm) 0)
 
   (define (tilemap-pixel-width tm) (* (tilemap-width tm) (tilemap-tile-width tm)))
   (define (tilemap-pixel-height tm) (* (tilemap-height tm) (tilemap-tile-height tm)))

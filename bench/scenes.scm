@@ -1,0 +1,237 @@
+;;; The benchmark scenes of bench-spec.md (S1, S2, S3), run by `make bench`.
+;;; Prints a table, the checksum lines the spec asks for, and writes one CSV
+;;; row per (scene, mode, n or speed):
+;;;   scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct
+;;; Usage: bench [--runs R] [--csv FILE] [--quick] [S1 S2 S3 ...]
+
+(import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
+        (chicken string) (chicken sort)
+        (downstroke entity) (downstroke scene) (downstroke tilemap)
+        (downstroke physics) (downstroke engine))
+
+;;; The generator of the spec: s := (1103515245 s + 12345) mod 2^31.
+(define seed 0)
+(define (reseed!) (set! seed 20261121))
+(define (rand)
+  (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648))
+  seed)
+
+;;; The map of S1: border and 12% of the cells solid, one draw per cell.
+(define (generate-map w h)
+  (list->tilemap
+   (let rows ((j 0))
+     (if (= j h) '()
+         (cons (let cols ((i 0))
+                 (if (= i w) '()
+                     (let ((r (rand)))
+                       (cons (if (or (= i 0) (= j 0) (= i (- w 1)) (= j (- h 1))
+                                     (< (modulo r 100) 12))
+                                 1 0)
+                             (cols (+ i 1))))))
+               (rows (+ j 1)))))))
+
+(define (median xs)
+  (let ((v (list->vector (sort xs <))))
+    (vector-ref v (quotient (vector-length v) 2))))
+
+(define (now) (current-process-milliseconds))
+
+(define csv-rows '())
+;; speed, tunnel and wrong are #f where a scene has none; ms is #f for S3,
+;; whose movers each run their own number of frames.
+(define (report! scene mode n speed frames ms us tunnel wrong)
+  (define (cell v) (if v v ""))
+  (set! csv-rows (cons (sprintf "~a,~a,~a,~a,~a,~a,~a,~a,~a"
+                                scene mode n (cell speed) frames (cell (and ms (fixed ms 4)))
+                                (fixed us 4) (cell tunnel) (cell wrong))
+                       csv-rows))
+  (printf "~a ~a n=~a~a~a  ~a us/entity-frame~a~%"
+          scene mode n (if speed (sprintf " v=~a" speed) "")
+          (if ms (sprintf "  ~a ms/frame" (fixed ms 3)) "")
+          (fixed us 4)
+          (if tunnel (sprintf "  tunnelled ~a%  wrong ~a%" tunnel wrong) "")))
+
+(define (fixed x digits)
+  (let* ((scale (expt 10 digits))
+         (r (/ (round (* (inexact->exact x) scale)) scale)))
+    (number->string (exact->inexact r))))
+
+(define (sum key es) (foldl (lambda (acc e) (+ acc (entity-ref e key 0))) 0 es))
+
+;;; S1: platformer crowd.
+(define s1-map #f)
+(define (s1-scene n mode)
+  (reseed!)
+  (set! s1-map (generate-map 256 256))
+  (let loop ((k 0) (movers '()) (speeds '()))
+    (if (= k n)
+        (values (make-scene tilemap: s1-map collision-mode: mode entities: (reverse movers))
+                (list->vector (reverse speeds)))
+        (let* ((cx (+ 1 (modulo (rand) 254)))
+               (cy (+ 1 (modulo (rand) 254))))
+          (if (tilemap-solid? s1-map cx cy)
+              (loop k movers speeds)
+              (let ((s (let ((s (- (modulo (rand) 9) 4))) (if (zero? s) 1 s))))
+                (loop (+ k 1)
+                      (cons (list (cons #:x (* cx 16)) (cons #:y (* cy 16))
+                                  (cons #:width 12) (cons #:height 12)
+                                  (cons #:vx 0) (cons #:vy 0) (cons #:ay 0)
+                                  (cons #:gravity? #t) (cons #:on-ground? #f))
+                            movers)
+                      (cons s speeds))))))))
+
+(define (s1-logic scene speeds f)
+  (let loop ((es (scene-entities scene)) (k 0) (out '()))
+    (if (null? es)
+        (update-scene scene entities: (reverse out))
+        (let* ((e (car es))
+               (s (vector-ref speeds k))
+               (s (if (and (zero? (entity-ref e #:vx)) (> f 0))
+                      (let ((s (- s))) (vector-set! speeds k s) s)
+                      s))
+               (e (entity-set e #:vx s))
+               (e (if (and (entity-ref e #:on-ground?) (zero? (modulo (+ f k) 60)))
+                      (entity-set e #:ay -10)
+                      e)))
+          (loop (cdr es) (+ k 1) (cons e out))))))
+
+(define (run-s1 n mode runs)
+  (let ((times
+         (let repeat ((r 0) (times '()))
+           (if (= r runs)
+               times
+               (let-values (((scene speeds) (s1-scene n mode)))
+                 (let frames ((f 0) (scene scene) (start #f))
+                   (cond ((= f 660)
+                          (when (= r 0)
+                            (let ((es (scene-entities scene)))
+                              (printf "checksum S1 ~a n=~a sum-x=~a sum-y=~a on-ground=~a~%"
+                                      mode n (sum #:x es) (sum #:y es)
+                                      (length (filter-on-ground es)))))
+                          (repeat (+ r 1) (cons (- (now) start) times)))
+                         (else
+                          (let ((start (if (= f 60) (now) start)))
+                            (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f)
+                                    start))))))))))
+    (let ((ms (/ (median times) 600.0)))
+      (report! "S1" mode n #f 600 ms (/ (* 1000 ms) n) #f #f))))
+
+(define (filter-on-ground es)
+  (let loop ((es es) (out '()))
+    (cond ((null? es) out)
+          ((entity-ref (car es) #:on-ground?) (loop (cdr es) (cons (car es) out)))
+          (else (loop (cdr es) out)))))
+
+;;; S2: solid crowd.
+(define (s2-scene n)
+  (reseed!)
+  (let loop ((k 0) (movers '()))
+    (if (= k n)
+        (make-sprite-scene entities: (reverse movers))
+        (let* ((x (modulo (rand) 2040)) (y (modulo (rand) 2040))
+               (vx (- (modulo (rand) 5) 2)) (vy (- (modulo (rand) 5) 2)))
+          (loop (+ k 1)
+                (cons (list (cons #:x x) (cons #:y y) (cons #:width 8) (cons #:height 8)
+                            (cons #:vx vx) (cons #:vy vy) (cons #:solid? #t))
+                      movers))))))
+
+(define (s2-step scene)
+  (let* ((scene (scene-map-entities scene (lambda (s e) (apply-velocity-x s e 16))))
+         (scene (scene-map-entities scene (lambda (s e) (apply-velocity-y s e 16)))))
+    (scene-transform-entities scene resolve-entity-collisions)))
+
+(define (clamp-axis e pos vel)
+  (let ((p (entity-ref e pos)))
+    (cond ((< p 0) (entity-set (entity-set e pos 0) vel (- (entity-ref e vel))))
+          ((> p 2040) (entity-set (entity-set e pos 2040) vel (- (entity-ref e vel))))
+          (else e))))
+
+(define (s2-logic scene)
+  (scene-map-entities scene (lambda (s e) (clamp-axis (clamp-axis e #:x #:vx) #:y #:vy))))
+
+(define (run-s2 n runs)
+  (let ((times
+         (let repeat ((r 0) (times '()))
+           (if (= r runs)
+               times
+               (let frames ((f 0) (scene (s2-scene n)) (start #f))
+                 (cond ((= f 660)
+                        (when (= r 0)
+                          (let ((es (scene-entities scene)))
+                            (printf "checksum S2 n=~a sum-x=~a sum-y=~a~%" n (sum #:x es) (sum #:y es))))
+                        (repeat (+ r 1) (cons (- (now) start) times)))
+                       (else
+                        (let ((start (if (= f 60) (now) start)))
+                          (frames (+ f 1) (s2-logic (s2-step scene)) start)))))))))
+    (let ((ms (/ (median times) 600.0)))
+      (report! "S2" "all-pairs" n #f 600 ms (/ (* 1000 ms) n) #f #f))))
+
+;;; S3: accuracy against speed.
+(define s3-map
+  (list->tilemap
+   (let rows ((j 0))
+     (if (= j 4) '()
+         (cons (let cols ((i 0)) (if (= i 400) '() (cons (if (= i 300) 1 0) (cols (+ i 1)))))
+               (rows (+ j 1)))))))
+
+(define (run-s3 v mode runs)
+  (let ((scene0 (make-scene tilemap: s3-map collision-mode: mode)))
+    (let repeat ((r 0) (times '()) (tunnelled 0) (wrong 0) (mover-frames 0))
+      (if (= r runs)
+          (let ((ms (median times)))
+            (report! "S3" mode 1000 v mover-frames #f (/ (* 1000.0 ms) mover-frames)
+                     (/ tunnelled 10.0) (/ wrong 10.0)))
+          (begin
+            (reseed!)
+            (let ((start (now)))
+              (let movers ((k 0) (tun 0) (wr 0) (mf 0))
+                (if (= k 1000)
+                    (repeat (+ r 1) (cons (- (now) start) times) tun wr mf)
+                    (let* ((x (min (+ 16 (/ (modulo (rand) 4000) 4)) 4788))
+                           (n (+ 1 (ceiling (/ (- 4816 x) v)))))
+                      (let frames ((i 0) (scene (update-scene scene0 entities:
+                                                               (list (list (cons #:x x) (cons #:y 16)
+                                                                           (cons #:width 12) (cons #:height 12)
+                                                                           (cons #:vx v) (cons #:vy 0))))))
+                        (if (= i n)
+                            (let ((fx (entity-ref (car (scene-entities scene)) #:x)))
+                              (movers (+ k 1)
+                                      (if (>= fx 4816) (+ tun 1) tun)
+                                      (if (= fx 4788) wr (+ wr 1))
+                                      (+ mf n)))
+                            (frames (+ i 1) (engine-pipeline scene 16)))))))))))))
+
+;;; Command line.
+(define args (command-line-arguments))
+(define (flag-value name default)
+  (let ((m (member name args))) (if (and m (pair? (cdr m))) (cadr m) default)))
+(define runs (string->number (flag-value "--runs" "3")))
+(define csv-file (flag-value "--csv" "bench/results.csv"))
+(define quick? (member "--quick" args))
+(define (wanted? s)
+  (let ((named (filter-scenes args)))
+    (or (null? named) (member s named))))
+(define (filter-scenes args)
+  (let loop ((as args) (out '()))
+    (cond ((null? as) out)
+          ((member (car as) '("S1" "S2" "S3")) (loop (cdr as) (cons (car as) out)))
+          (else (loop (cdr as) out)))))
+
+(when (wanted? "S1")
+  (for-each (lambda (mode)
+              (for-each (lambda (n) (run-s1 n mode runs))
+                        (if quick? '(100 1000) '(100 1000 10000))))
+            '(discrete swept)))
+(when (wanted? "S2")
+  (for-each (lambda (n) (run-s2 n runs)) (if quick? '(100) '(100 1000))))
+(when (wanted? "S3")
+  (for-each (lambda (mode)
+              (for-each (lambda (v) (run-s3 v mode runs))
+                        '(1 8 16 27 28 29 40 64 200 1000 1000000)))
+            '(discrete swept)))
+
+(with-output-to-file csv-file
+  (lambda ()
+    (print "scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct")
+    (for-each print (reverse csv-rows))))
+(printf "wrote ~a~%" csv-file)
