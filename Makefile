@@ -10,7 +10,7 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util srfi-197 entity tween animation tilemap scene physics engine
+MODULES := test util srfi-197 entity tween animation tilemap scene broadphase physics engine
 
 LIBS := $(patsubst %,$(BUILD)/downstroke.%.so,$(MODULES))
 
@@ -46,7 +46,7 @@ $(BUILD)/downstroke.%.so: %.scm | $(BUILD)
 $(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.tilemap.so
-$(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
+$(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
 $(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
 
 test: libs

@@ -17,7 +17,8 @@
    *gravity* *jump-force* *entity-ground-contact-tolerance* *entity-ground-vy-max*)
 
   (import scheme (chicken base) (chicken fixnum) (chicken format) srfi-4
-          (downstroke entity) (downstroke scene) (downstroke tilemap))
+          (downstroke entity) (downstroke scene) (downstroke tilemap)
+          (downstroke broadphase))
 
   ;;; Constants
 
@@ -331,22 +332,40 @@
   ;; All pairs i < j in list order; each pair sees the positions left by the
   ;; pairs before it. Only entities that collide take part, so a scene with
   ;; fewer than two of them costs one scan and returns the list itself.
-  (define (resolve-entity-collisions entities)
+  ;; `method`: 'all-pairs visits every pair, as the contract describes;
+  ;; 'spatial-hash visits only pairs that can overlap at their turn (see
+  ;; broadphase.scm), with exactly the same result; 'auto (the default)
+  ;; takes the hash from `spatial-hash-threshold` colliding entities on.
+  (define spatial-hash-threshold 32)
+
+  (define (resolve-entity-collisions entities #!optional (method 'auto))
     (let* ((all (list->vector entities))
            (idx (let loop ((i (- (vector-length all) 1)) (out '()))
                   (cond ((< i 0) (list->vector out))
                         ((collides? (vector-ref all i)) (loop (- i 1) (cons i out)))
                         (else (loop (- i 1) out)))))
            (n (vector-length idx)))
+      (define (visit! p q)
+        (let ((i (vector-ref idx p)) (j (vector-ref idx q)))
+          (let-values (((a b) (resolve-pair (vector-ref all i) (vector-ref all j))))
+            (vector-set! all i a)
+            (vector-set! all j b))))
+      (define (box p)
+        (let ((e (vector-ref all (vector-ref idx p))))
+          (values (num e #:x) (num e #:y) (num e #:width) (num e #:height))))
       (if (< n 2)
           entities
           (begin
-            (do ((p 0 (fx+ p 1))) ((fx= p n))
-              (do ((q (fx+ p 1) (fx+ q 1))) ((fx= q n))
-                (let ((i (vector-ref idx p)) (j (vector-ref idx q)))
-                  (let-values (((a b) (resolve-pair (vector-ref all i) (vector-ref all j))))
-                    (vector-set! all i a)
-                    (vector-set! all j b)))))
+            (case (if (eq? method 'auto)
+                      (if (< n spatial-hash-threshold) 'all-pairs 'spatial-hash)
+                      method)
+              ((all-pairs)
+               (do ((p 0 (fx+ p 1))) ((fx= p n))
+                 (do ((q (fx+ p 1) (fx+ q 1))) ((fx= q n))
+                   (visit! p q))))
+              ((spatial-hash) (visit-pairs-in-order n box visit!))
+              (else (error 'resolve-entity-collisions
+                           "method must be 'auto, 'all-pairs or 'spatial-hash" method)))
             (vector->list all)))))
 
   ;;; Groups

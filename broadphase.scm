@@ -1,0 +1,127 @@
+;;; (downstroke broadphase): visit pairs of moving boxes in list order,
+;;; without visiting every pair.
+;;;
+;;; The entity-collision step must behave exactly like the contract's
+;;; all-pairs walk: pairs (p, q) with p < q in order, each seeing the
+;;; positions left by the pairs before it. `visit-pairs-in-order` calls
+;;; (visit! p q) in that same order for a subset of the pairs that always
+;;; includes every pair whose boxes overlap when its turn comes; skipping
+;;; the others is safe because visiting a non-overlapping pair does nothing.
+;;;
+;;; How: a spatial hash of square cells. Before row p, the candidates are
+;;; the boxes sharing a cell with p. During row p only p and the current q
+;;; move; whenever p moves into other cells, those cells are asked again, so
+;;; a box that p reaches later in the row is still visited at its turn.
+;;; Boxes much larger than a cell are kept aside and visited by everyone.
+
+(module (downstroke broadphase)
+  (visit-pairs-in-order)
+
+  (import scheme (chicken base) (chicken fixnum))
+
+  ;; A box spanning more cells than this on an axis is "large".
+  (define large-span 16)
+
+  (define (->integer v) (if (exact? v) v (inexact->exact v)))
+  (define (cell-of v size) (->integer (floor (/ v size))))
+
+  ;; n boxes numbered 0..n-1; (box k) returns the current (values x y w h);
+  ;; (visit! p q) may move boxes p and q.
+  (define (visit-pairs-in-order n box visit!)
+    (let* ((size (cell-size n box))
+           (buckets (make-vector (bucket-count n) '()))
+           (mask (- (vector-length buckets) 1))
+           (spans (make-vector n #f))          ; #(cx0 cy0 cx1 cy1) or 'large
+           (stamp (make-vector n -1)))
+      (define (bucket cx cy)
+        (if (and (fixnum? cx) (fixnum? cy))
+            (fxand (fxxor (fx* cx 73856093) (fx* cy 19349663)) mask)
+            (modulo (+ (* cx 73856093) (* cy 19349663)) (+ mask 1))))
+      (define (span-of k)
+        (let-values (((x y w h) (box k)))
+          (let ((cx0 (cell-of x size)) (cy0 (cell-of y size))
+                (cx1 (cell-of (+ x w) size)) (cy1 (cell-of (+ y h) size)))
+            (if (or (> (- cx1 cx0) large-span) (> (- cy1 cy0) large-span))
+                'large
+                (vector cx0 cy0 cx1 cy1)))))
+      (define (for-each-cell span proc)
+        (do ((cy (vector-ref span 1) (+ cy 1))) ((> cy (vector-ref span 3)))
+          (do ((cx (vector-ref span 0) (+ cx 1))) ((> cx (vector-ref span 2)))
+            (proc (bucket cx cy)))))
+      (define large '())                      ; indices, ascending
+      (define (register! k span)
+        (vector-set! spans k span)
+        (if (eq? span 'large)
+            (set! large (insert k large))
+            (for-each-cell span (lambda (b) (vector-set! buckets b (cons k (vector-ref buckets b)))))))
+      (define (unregister! k)
+        (let ((span (vector-ref spans k)))
+          (if (eq? span 'large)
+              (set! large (remove-one k large))
+              (for-each-cell span (lambda (b) (vector-set! buckets b (remove-one k (vector-ref buckets b))))))))
+      ;; Re-file box k if its cells changed; #t when they did.
+      (define (refresh! k)
+        (let ((old (vector-ref spans k)) (new (span-of k)))
+          (and (not (equal? old new))
+               (begin (unregister! k) (register! k new) #t))))
+      ;; Add to the ascending `queue` every box after `after` sharing a cell
+      ;; with p, or large, not yet queued in row p.
+      (define (gather p after queue)
+        (let ((add (lambda (q queue)
+                     (if (and (fx> q after) (not (fx= (vector-ref stamp q) p)))
+                         (begin (vector-set! stamp q p) (insert q queue))
+                         queue))))
+          (let ((queue (let loop ((ls large) (queue queue))
+                         (if (null? ls) queue (loop (cdr ls) (add (car ls) queue))))))
+            (let ((span (vector-ref spans p)))
+              (let ((result queue))
+                (for-each-cell span
+                               (lambda (b)
+                                 (let loop ((ls (vector-ref buckets b)))
+                                   (unless (null? ls)
+                                     (set! result (add (car ls) result))
+                                     (loop (cdr ls))))))
+                result)))))
+      (do ((k 0 (fx+ k 1))) ((fx= k n)) (register! k (span-of k)))
+      (do ((p 0 (fx+ p 1))) ((fx= p n))
+        (if (eq? (vector-ref spans p) 'large)
+            ;; a large box meets everyone after it
+            (do ((q (fx+ p 1) (fx+ q 1))) ((fx= q n))
+              (visit! p q)
+              (refresh! q)
+              (refresh! p))
+            (let row ((queue (gather p p '())))
+              (unless (null? queue)
+                (let ((q (car queue)))
+                  (visit! p q)
+                  (refresh! q)
+                  (row (if (and (refresh! p) (not (eq? (vector-ref spans p) 'large)))
+                           (gather p q (cdr queue))
+                           (if (eq? (vector-ref spans p) 'large)
+                               ;; p grew large mid-row: everyone after q
+                               (let tail ((r (- n 1)) (out '()))
+                                 (if (fx<= r q) out (tail (fx- r 1) (cons r out))))
+                               (cdr queue)))))))))))
+
+  ;; Cells about twice the mean box size keep a few boxes per cell.
+  (define (cell-size n box)
+    (let loop ((k 0) (total 0))
+      (if (fx= k n)
+          (let ((mean (/ total n)))
+            (if (and (real? mean) (> mean 0)) (* 2 mean) 1))
+          (let-values (((x y w h) (box k)))
+            (loop (fx+ k 1) (+ total (max w h)))))))
+
+  (define (bucket-count n)
+    (let loop ((m 16)) (if (>= m (* 2 n)) m (loop (* m 2)))))
+
+  (define (insert k ls)
+    (cond ((null? ls) (list k))
+          ((fx< k (car ls)) (cons k ls))
+          ((fx= k (car ls)) ls)
+          (else (cons (car ls) (insert k (cdr ls))))))
+
+  (define (remove-one k ls)
+    (cond ((null? ls) '())
+          ((fx= k (car ls)) (cdr ls))
+          (else (cons (car ls) (remove-one k (cdr ls)))))))
