@@ -14,6 +14,7 @@
    resolve-entity-collisions sync-groups
    aabb-overlap? entity-tile-cells entity-cell-span tile-push-pos
    entity-solid-support-below? tile-support-below? resolve-pair push-apart
+   discrete-safe-speed tunnel-risk?
    *gravity* *jump-force* *entity-ground-contact-tolerance* *entity-ground-vy-max*)
 
   (import scheme (chicken base) (chicken fixnum) (chicken format) srfi-4
@@ -172,6 +173,24 @@
       (else (error 'downstroke
                    (sprintf "entity ~a: #:collision-mode is ~s, not discrete or swept"
                             (entity-label entity) (entity-ref entity #:collision-mode #f))))))
+
+  ;; The discrete step cannot pass a wall one tile thick while the body moves
+  ;; less than its own size plus a tile per frame on that axis: some cell it
+  ;; covers after the move is then one it could not have jumped over. At or
+  ;; above this speed (px/frame) it may tunnel.
+  (define (discrete-safe-speed size tile) (+ size tile))
+
+  ;; Whether this entity, in this scene, could pass through a wall this
+  ;; frame: discrete mode and a speed at or above the safe speed on an axis.
+  ;; The debug overlay marks such bodies.
+  (define (tunnel-risk? scene entity)
+    (let ((tm (scene-tilemap scene)))
+      (and tm
+           (not (swept? scene entity))
+           (or (>= (abs (num entity #:vx))
+                   (discrete-safe-speed (num entity #:width) (tilemap-tile-width tm)))
+               (>= (abs (num entity #:vy))
+                   (discrete-safe-speed (num entity #:height) (tilemap-tile-height tm)))))))
 
   ;; Both tile passes: pos-key is the axis resolved, across-key the other.
   ;; A velocity of 0 snaps nothing.
