@@ -10,7 +10,11 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util srfi-197 entity tween animation tilemap scene broadphase physics engine
+MODULES := test util srfi-197 entity tween animation xml decode tilemap scene broadphase physics engine
+
+# C libraries a module binds through the FFI (passed to the linker by csc).
+LINK_xml    := -L -lexpat
+LINK_decode := -L -lz -L -lzstd
 
 LIBS := $(patsubst %,$(BUILD)/downstroke.%.so,$(MODULES))
 
@@ -21,7 +25,7 @@ export CHICKEN_REPOSITORY_PATH = $(abspath $(BUILD)):$(CHICKEN_REPO)
 export SDL_VIDEODRIVER ?= dummy
 export SDL_AUDIODRIVER ?= dummy
 
-.PHONY: all deps libs test demo bench clean
+.PHONY: all deps libs examples test demo bench clean
 all: libs
 
 deps:
@@ -39,17 +43,22 @@ $(BUILD):
 # -J writes downstroke.foo.import.scm beside the library; it is compiled too,
 # so `import` loads native code rather than interpreting the import list.
 $(BUILD)/downstroke.%.so: %.scm | $(BUILD)
-	cd $(BUILD) && $(CSC) -s $(CSC_FLAGS) -J ../$< -o downstroke.$*.so
+	cd $(BUILD) && $(CSC) -s $(CSC_FLAGS) $(LINK_$*) -J ../$< -o downstroke.$*.so
 	cd $(BUILD) && $(CSC) -s $(CSC_FLAGS) downstroke.$*.import.scm -o downstroke.$*.import.so
 
 # What each module imports from this library (compile-time dependencies).
 $(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
+$(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.tilemap.so
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
 $(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
 
-test: libs
+# Tiled's own example maps, from Debian's tiled package (cached in tests/data).
+examples:
+	@sh tools/fetch-tiled-examples.sh
+
+test: libs examples
 	cd tests && DOWNSTROKE_MAKE=1 csi -q -s run.scm
 
 # The platformer demo arrives with the game shell; until then this runs the
@@ -65,6 +74,7 @@ $(BUILD)/bench-scenes: bench/scenes.scm $(LIBS)
 
 bench: libs $(BUILD)/bench-scenes
 	$(BUILD)/bench-scenes --runs $(RUNS) --csv bench/results.csv $(BENCH_ARGS)
+	csi -q -s bench/map-load.scm
 
 clean:
 	rm -rf $(BUILD)

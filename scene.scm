@@ -152,15 +152,21 @@
 
   ;; The camera that centres a view of view-w x view-h on `target`, kept
   ;; inside the map when there is one (a map smaller than the view pins the
-  ;; camera at 0 on that axis). Values stay exact; the renderer rounds.
+  ;; camera to the map's top or left edge). An infinite map's edges are
+  ;; those of its chunks, negative ones included. Values stay exact; the
+  ;; renderer rounds.
   (define (camera-follow camera target view-w view-h tilemap)
-    (define (axis centre view extent)
+    (define (axis centre view lo extent)
       (let ((pos (- centre (/ view 2))))
-        (if extent (max 0 (min pos (- extent view))) pos)))
+        (if extent (max lo (min pos (- (+ lo extent) view))) pos)))
     (let ((cx (+ (entity-ref target #:x 0) (/ (entity-ref target #:width 0) 2)))
           (cy (+ (entity-ref target #:y 0) (/ (entity-ref target #:height 0) 2))))
-      (%make-camera (axis cx view-w (and tilemap (tilemap-pixel-width tilemap)))
-                    (axis cy view-h (and tilemap (tilemap-pixel-height tilemap))))))
+      (%make-camera (axis cx view-w
+                          (if tilemap (* (tilemap-origin-col tilemap) (tilemap-tile-width tilemap)) 0)
+                          (and tilemap (tilemap-pixel-width tilemap)))
+                    (axis cy view-h
+                          (if tilemap (* (tilemap-origin-row tilemap) (tilemap-tile-height tilemap)) 0)
+                          (and tilemap (tilemap-pixel-height tilemap))))))
 
   ;; What the engine does after update:, as a pure function of the scene.
   (define (scene-follow-camera s view-w view-h)

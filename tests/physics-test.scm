@@ -3,7 +3,7 @@
 
 (import scheme (chicken base) (chicken string)
         (downstroke test) (downstroke entity) (downstroke tilemap)
-        (downstroke scene) (downstroke physics))
+        (downstroke scene) (downstroke physics) srfi-4)
 
 (define (ent . plist) (plist->entity plist))
 (define (at e . keys) (map (lambda (k) (entity-ref e k)) keys))
@@ -250,3 +250,33 @@
     (test-assert "an entity without a group is left alone" (eq? (list-ref es 4) (list-ref out 4))))
   (let ((es (list (ent #:x 1) (ent #:x 2))))
     (test-assert "no groups: the list itself comes back" (eq? es (sync-groups es)))))
+
+(test-group "maps whose origin is not 0,0 (infinite maps)"
+  ;; 4 x 2 cells starting at column -4, row -2; column -2 is a wall.
+  (define tm (make-tilemap 4 2 16 16
+                           (list (make-layer "chunks" 4 2 (u32vector 0 0 1 0 0 0 1 0)))
+                           origin-col: -4 origin-row: -2))
+  (define s (make-scene tilemap: tm))
+  (test "the wall is where Tiled shows it" '(1 0) (list (tilemap-tile-at tm -2 -1) (tilemap-tile-at tm -1 -1)))
+  (test "moving right stops on the wall's near side" '(-42 0)
+        (at (resolve-tile-collisions-x s (ent #:x -40 #:y -30 #:width 10 #:height 10 #:vx 5) 16) #:x #:vx))
+  (test "moving left stops on its far side" '(-16 0)
+        (at (resolve-tile-collisions-x s (ent #:x -20 #:y -30 #:width 10 #:height 10 #:vx -5) 16) #:x #:vx))
+  (test "swept from far left stops on it too" -42
+        (entity-ref (resolve-tile-collisions-x (update-scene s collision-mode: 'swept)
+                                               (ent #:x 100 #:y -30 #:width 10 #:height 10 #:vx 500) 16)
+                    #:x))
+  (test "ground under a negative row" #t
+        (entity-ref (detect-on-solid s (ent #:gravity? #t #:x -34 #:y -48 #:width 4 #:height 16) 16)
+                    #:on-ground?))
+  (let* ((big (make-tilemap 40 30 16 16 (list (make-layer "l" 40 30 (make-u32vector 1200 0)))
+                            origin-col: -20 origin-row: -10))
+         (cam (lambda (x y)
+                (let ((c (scene-camera (scene-follow-camera
+                                        (make-scene tilemap: big
+                                                    entities: (list (ent #:x x #:y y #:width 0 #:height 0
+                                                                         #:tags '(camera-target))))
+                                        320 240))))
+                  (list (camera-x c) (camera-y c))))))
+    (test "the camera clamps to the map's negative top-left" '(-320 -160) (cam -1000 -1000))
+    (test "and to its bottom-right" '(0 80) (cam 1000 1000))))
