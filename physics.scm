@@ -147,7 +147,9 @@
   (define-pipeline (apply-acceleration acceleration) (scene entity dt)
     guard: (entity-ref entity #:gravity? #f)
     (let ((ay (num entity #:ay)))
-      (entity-set (entity-set entity #:vy (+ (num entity #:vy) ay)) #:ay 0)))
+      (if (and (eq? ay 0) (assq #:ay entity))
+          entity                        ; nothing to consume: no new entity
+          (entity-set (entity-set entity #:vy (+ (num entity #:vy) ay)) #:ay 0))))
 
   (define-pipeline (apply-gravity gravity) (scene entity dt)
     guard: (entity-ref entity #:gravity? #f)
@@ -263,7 +265,10 @@
     (let* ((tm (scene-tilemap scene))
            (ground? (or (and tm (tile-support-below? entity tm))
                         (entity-solid-support-below? entity (scene-solid-entities scene)))))
-      (entity-set entity #:on-ground? ground?)))
+      (let ((known (assq #:on-ground? entity)))
+        (if (and known (eq? (cdr known) ground?))
+            entity
+            (entity-set entity #:on-ground? ground?)))))
 
   ;;; Entity against entity
 

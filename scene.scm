@@ -119,10 +119,24 @@
           (scene-solids-cache-set! s solids)
           solids)))
 
+  ;; map that returns the list itself, sharing its unchanged tail, when
+  ;; `f` returns its argument: a step that changes no entity allocates
+  ;; nothing, so a pipeline step a scene does not need costs one walk.
+  (define (map/shared f ls)
+    (if (null? ls)
+        ls
+        (let* ((head (f (car ls)))
+               (tail (map/shared f (cdr ls))))
+          (if (and (eq? head (car ls)) (eq? tail (cdr ls)))
+              ls
+              (cons head tail)))))
+
   ;; (proc scene entity) -> entity, for every entity; proc sees this scene,
-  ;; i.e. every entity as it was before the map.
+  ;; i.e. every entity as it was before the map. When proc changes nothing
+  ;; the scene itself comes back.
   (define (scene-map-entities s proc)
-    (with-entities s (map (lambda (e) (proc s e)) (scene-entities s))))
+    (let ((out (map/shared (lambda (e) (proc s e)) (scene-entities s))))
+      (if (eq? out (scene-entities s)) s (with-entities s out))))
 
   ;; (proc entities) -> entities, over the whole list at once.
   (define (scene-transform-entities s proc)
