@@ -74,6 +74,7 @@ $(BUILD)/bench-scenes: bench/scenes.scm $(LIBS)
 
 bench: libs $(BUILD)/bench-scenes
 	$(BUILD)/bench-scenes --runs $(RUNS) --csv bench/results.csv $(BENCH_ARGS)
+	sh tools/plot-bench.sh bench/results.csv docs/images
 	csi -q -s bench/map-load.scm
 
 clean:

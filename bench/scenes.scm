@@ -7,7 +7,7 @@
 (import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
         (chicken string) (chicken sort)
         (downstroke entity) (downstroke scene) (downstroke tilemap)
-        (downstroke physics) (downstroke engine))
+        (downstroke physics) (downstroke engine) (downstroke tween) (downstroke animation))
 
 ;;; The generator of the spec: s := (1103515245 s + 12345) mod 2^31.
 (define seed 0)
@@ -122,6 +122,38 @@
           ((entity-ref (car es) #:on-ground?) (loop (cdr es) (cons (car es) out)))
           (else (loop (cdr es) out)))))
 
+;;; What each step of the pipeline costs on the S1 crowd, one pass at a time
+;;; (the scene after the warm-up). Steps no entity of S1 needs (tweens,
+;;; entity collisions, groups, animation) should cost one walk of the list.
+(define (run-s1-steps n runs)
+  (let-values (((scene speeds) (s1-scene n 'discrete)))
+    (let* ((scene (let warm ((f 0) (scene scene))
+                    (if (= f 60) scene (warm (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f)))))
+           (per-entity (lambda (step) (lambda (s) (scene-map-entities s (lambda (sc e) (step sc e 16))))))
+           (bulk (lambda (step) (lambda (s) (scene-transform-entities s step))))
+           (steps `(("step-tweens" . ,(per-entity step-tweens))
+                    ("apply-acceleration" . ,(per-entity apply-acceleration))
+                    ("apply-gravity" . ,(per-entity apply-gravity))
+                    ("apply-velocity-x" . ,(per-entity apply-velocity-x))
+                    ("resolve-tile-collisions-x" . ,(per-entity resolve-tile-collisions-x))
+                    ("apply-velocity-y" . ,(per-entity apply-velocity-y))
+                    ("resolve-tile-collisions-y" . ,(per-entity resolve-tile-collisions-y))
+                    ("detect-on-solid" . ,(per-entity detect-on-solid))
+                    ("resolve-entity-collisions" . ,(bulk resolve-entity-collisions))
+                    ("sync-groups" . ,(bulk sync-groups))
+                    ("apply-animation" . ,(per-entity apply-animation))
+                    ("whole pipeline" . ,(lambda (s) (engine-pipeline s 16))))))
+      (for-each
+       (lambda (step)
+         (let ((times (let repeat ((r 0) (times '()))
+                        (if (= r runs)
+                            times
+                            (let ((start (now)))
+                              (do ((i 0 (+ i 1))) ((= i 20)) ((cdr step) scene))
+                              (repeat (+ r 1) (cons (/ (- (now) start) 20.0) times)))))))
+           (report! "S1-step" (car step) n #f 1 (median times) (/ (* 1000 (median times)) n) #f #f)))
+       steps))))
+
 ;;; S2: solid crowd.
 (define (s2-scene n)
   (reseed!)
@@ -215,7 +247,7 @@
 (define (filter-scenes args)
   (let loop ((as args) (out '()))
     (cond ((null? as) out)
-          ((member (car as) '("S1" "S2" "S3")) (loop (cdr as) (cons (car as) out)))
+          ((member (car as) '("S1" "S2" "S3" "steps")) (loop (cdr as) (cons (car as) out)))
           (else (loop (cdr as) out)))))
 
 (when (wanted? "S1")
@@ -223,6 +255,8 @@
               (for-each (lambda (n) (run-s1 n mode runs))
                         (if quick? '(100 1000) '(100 1000 10000))))
             '(discrete swept)))
+(when (wanted? "steps")
+  (run-s1-steps (if quick? 1000 10000) runs))
 (when (wanted? "S2")
   ;; all pairs is quadratic: 5000 would take minutes a frame
   (for-each (lambda (n) (run-s2 n 'all-pairs runs)) (if quick? '(100) '(100 1000)))
