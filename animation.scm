@@ -161,7 +161,10 @@
   (define (set-animation e name)
     (let* ((animations (entity-animations 'set-animation e)))
       (lookup 'set-animation e animations name)
-      (if (equal? name (current-name e animations))
+      ;; The current animation is left running, so a game may call this
+      ;; every frame; a finished one-shot starts again.
+      (if (and (equal? name (current-name e animations))
+               (not (entity-ref e #:anim-finished? #f)))
           e
           (entity-remove
            (entity-set (entity-set (entity-set e #:anim-name name) #:anim-frame 0)

@@ -58,7 +58,7 @@
 
   ;; How tile collisions are resolved unless a scene or an entity says
   ;; otherwise (see physics.scm and docs/physics.org).
-  (define *default-collision-mode* 'discrete)
+  (define *default-collision-mode* 'swept)
 
   ;; camera-target: the tag of the entity the camera centres on after each
   ;; update: ('camera-target unless given), or #f for a camera that stays put.

@@ -210,3 +210,12 @@
   (test "animation-named: #f when absent" #f (animation-named (list an-walk an-jump) 'fly))
   (test "animation-named returns a plist animation as an alist" '((#:name . p) (#:frames . (1)))
         (animation-named '((#:name p #:frames (1))) 'p)))
+
+(test-group "set-animation replays a finished one-shot"
+  (let* ((done (an-steps (an-hero an-die) 20))
+         (again (set-animation done 'die)))
+    (test "finished first" #t (entity-ref done #:anim-finished? #f))
+    (test "setting it again restarts it" '(0 0 none)
+          (list (entity-ref again #:anim-frame) (entity-ref again #:anim-tick)
+                (entity-ref again #:anim-finished? 'none)))
+    (test "and it plays its frames again" 1 (entity-ref (apply-animation #f again 16) #:tile-id))))
