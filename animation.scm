@@ -49,10 +49,11 @@
 
   (define (animation-name a) (entity-ref a #:name #f))
 
-  (define (animation-frames a)
+  ;; who: the exported procedure the error is reported from.
+  (define (animation-frames who a)
     (let ((frames (entity-ref a #:frames #f)))
       (unless (and (pair? frames) (list? frames))
-        (error 'downstroke
+        (error who
                (sprintf "animation ~s: #:frames must be a non-empty list, got ~s"
                         (animation-name a) frames)))
       frames))
@@ -60,7 +61,7 @@
   (define (animation-loops? a) (and (entity-ref a #:loop? #t) #t))
 
   (define (frame-at who a index)
-    (let ((frames (animation-frames a)))
+    (let ((frames (animation-frames who a)))
       (unless (and (exact-integer? index) (>= index 0) (< index (length frames)))
         (error who
                (sprintf "animation ~s: frame index ~s is not in 0..~a"
@@ -127,7 +128,7 @@
     (let* ((animations (entity-animations 'apply-animation entity))
            (name (current-name entity animations))
            (anim (lookup 'apply-animation entity animations name))
-           (last (- (length (animation-frames anim)) 1))
+           (last (- (length (animation-frames 'apply-animation anim)) 1))
            (frame (state-number 'apply-animation entity #:anim-frame))
            (tick (state-number 'apply-animation entity #:anim-tick)))
       (when (> frame last)

@@ -13,7 +13,8 @@
 ;;; flag-free gid: a cell is solid when that gid is not 0.
 ;;;
 ;;; Which layers collide: every tile layer, unless the layer has the property
-;;; `collides` set to #f. So the contract's default holds (any non-zero tile
+;;; `collides` set to #f (a bool property; the string "false" or the int 0
+;;; do not opt out). So the contract's default holds (any non-zero tile
 ;;; is solid) and a decoration layer opts out with one property in Tiled.
 ;;;
 ;;; Infinite maps. Tiled stores an infinite map's layers as chunks at any
@@ -22,7 +23,10 @@
 ;;; top-left cell of that rectangle (0 and 0 for finite maps), and
 ;;; `tilemap-width`/`-height` its size. Every cell accessor takes the column
 ;;; and row Tiled shows, so valid columns are [origin-col, origin-col + width)
-;;; and valid rows [origin-row, origin-row + height). Cells outside are empty.
+;;; and valid rows [origin-row, origin-row + height). Cells outside are empty
+;;; (any exact integer is a cell, bignums included); a column or row that is
+;;; not an exact integer is an error, and so is an unknown layer, whether the
+;;; cell is inside the map or not.
 ;;;
 ;;; The loader. `(load-tilemap path)` reads a TMX file with its external
 ;;; tilesets (.tsx), templates (.tx) and checks that every image they name
@@ -376,32 +380,56 @@
              (car layers))
             (else (loop (cdr layers) (+ i 1))))))
 
+  ;; A coordinate that is not an exact integer is an error naming it; an
+  ;; exact integer of any size is a cell, inside the map or not.
+  (define (check-coordinate who name x)
+    (unless (exact-integer? x)
+      (error who (sprintf "~a: expected an exact integer, got ~s" name x))))
+
   ;; The index of a cell in the layer vectors, or #f outside the map.
-  (define (cell-index tm col row)
-    (and (fixnum? col) (fixnum? row)
-         (let ((c (- col (tilemap-origin-col tm)))
-               (r (- row (tilemap-origin-row tm))))
-           (and (fixnum? c) (fixnum? r)
-                (fx>= c 0) (fx< c (tilemap-width tm))
-                (fx>= r 0) (fx< r (tilemap-height tm))
-                (fx+ (fx* r (tilemap-width tm)) c)))))
+  ;; Fixnums take the fast path; anything else is checked (bignums are
+  ;; outside every map, the rest an error).
+  (define (cell-index who tm col row)
+    (if (and (fixnum? col) (fixnum? row))
+        (let ((c (- col (tilemap-origin-col tm)))
+              (r (- row (tilemap-origin-row tm))))
+          (and (fixnum? c) (fixnum? r)
+               (fx>= c 0) (fx< c (tilemap-width tm))
+               (fx>= r 0) (fx< r (tilemap-height tm))
+               (fx+ (fx* r (tilemap-width tm)) c)))
+        (begin (check-coordinate who "col" col)
+               (check-coordinate who "row" row)
+               #f)))
+
+  ;; The cell data of layer `which`, looked up before the cell so that an
+  ;; unknown layer is an error wherever the cell is. Layer 0 (the default)
+  ;; is the head of the list.
+  (define (layer-cells tm which)
+    (let ((layers (tilemap-layers tm)))
+      (layer-data (if (and (eqv? which 0) (pair? layers))
+                      (car layers)
+                      (tilemap-layer tm which)))))
+
+  (define (cell-ref who tm col row which)
+    (let* ((i (cell-index who tm col row))
+           (data (layer-cells tm which)))
+      (if i (u32vector-ref data i) 0)))
 
   ;; The raw cell (gid with flip flags); 0 when empty or outside the map.
   (define (tilemap-cell-at tm col row #!optional (which 0))
-    (let ((i (cell-index tm col row)))
-      (if i (u32vector-ref (layer-data (tilemap-layer tm which)) i) 0)))
+    (cell-ref 'tilemap-cell-at tm col row which))
 
   ;; The tile id (flag-free gid) at a cell; 0 when empty or outside the map.
   (define (tilemap-tile-at tm col row #!optional (which 0))
-    (fxand (tilemap-cell-at tm col row which) gid-mask))
+    (fxand (cell-ref 'tilemap-tile-at tm col row which) gid-mask))
 
   ;; The flip flags of a cell, as cell-flags gives them.
   (define (tilemap-flags-at tm col row #!optional (which 0))
-    (cell-flags (tilemap-cell-at tm col row which)))
+    (cell-flags (cell-ref 'tilemap-flags-at tm col row which)))
 
   ;; Whether any colliding layer has a tile at the cell; outside is empty.
   (define (tilemap-solid? tm col row)
-    (let ((i (cell-index tm col row)))
+    (let ((i (cell-index 'tilemap-solid? tm col row)))
       (and i (fx= 1 (u8vector-ref (tilemap-solid-grid tm) i)))))
 
   ;;; ------------------------------------------------------------------
@@ -522,7 +550,7 @@
       (cond ((not s) default)
             ((member s '("1" "true")) #t)
             ((member s '("0" "false")) #f)
-            (else (bad-attr ctx node name "0 or 1")))))
+            (else (bad-attr ctx node name "0, 1, true or false")))))
 
   (define (attr-choice ctx node name choices default)
     (let ((s (x-attr node name)))

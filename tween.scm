@@ -277,10 +277,22 @@
            (n (if (< time (* n duration)) (- n 1) n)))
       (if (>= (- time (* n duration)) duration) (+ n 1) n)))
 
+  ;; An entity argument as an alist: a plist is converted as make-tween
+  ;; does; anything that is neither is an error naming `who`.
+  (define (entity-argument who x)
+    (if (or (null? x)
+            (and (pair? x) (or (pair? (car x)) (keyword? (car x)))))
+        (as-entity x)
+        (error who (sprintf "entity: expected an entity (a keyword alist or plist), got ~s" x))))
+
   (define (tween-step t entity dt)
     (unless (tween? t)
       (error 'tween-step (sprintf "expected a tween, got ~s" t)))
     (check-time 'tween-step "dt" dt)
+    (let ((entity (entity-argument 'tween-step entity)))
+      (step t entity dt)))
+
+  (define (step t entity dt)
     (cond
      ((tween-finished? t) (values t entity))
      ((> (tween-delay-left t) dt)

@@ -1,5 +1,5 @@
 (import (downstroke test) (downstroke entity) (downstroke animation)
-        scheme (chicken base) (chicken string))
+        scheme (chicken base) (chicken string) (chicken condition))
 
 ;;; Helpers (prefixed an- because every suite is loaded into one toplevel).
 
@@ -9,6 +9,10 @@
       (let loop ((parts parts))
         (or (null? parts)
             (and (substring-index (car parts) text) (loop (cdr parts))))))))
+
+;; The error's location (the procedure that raised it) is `who`.
+(define ((an-located? who) exn)
+  (eq? who ((condition-property-accessor 'exn 'location #f) exn)))
 
 (define an-walk '((#:name . walk) (#:frames . (28 29 30)) (#:duration . 2)))
 (define an-run '((#:name . run) (#:frames . (10 (11 . 3) 12)) (#:duration . 1)))
@@ -206,6 +210,15 @@
               (animation-frame-duration '((#:name . f) (#:frames . ((1 . 1.5)))) 0))
   (test-error "empty #:frames" (an-says? "e" "#:frames")
               (animation-frame-duration '((#:name . e) (#:frames . ()) (#:duration . 1)) 0))
+  (test-error "empty #:frames: the location is the procedure called"
+              (an-located? 'animation-frame-duration)
+              (animation-frame-duration '((#:name . e) (#:frames . ()) (#:duration . 1)) 0))
+  (test-error "#:frames not a list: located at animation-frame-tile"
+              (an-located? 'animation-frame-tile)
+              (animation-frame-tile '((#:name . e) (#:frames . 7)) 0))
+  (test-error "empty #:frames in apply-animation: located there"
+              (an-located? 'apply-animation)
+              (apply-animation #f (an-hero '((#:name . e) (#:frames . ()) (#:duration . 1))) 16))
   (test "animation-named finds one" an-jump (animation-named (list an-walk an-jump) 'jump))
   (test "animation-named: #f when absent" #f (animation-named (list an-walk an-jump) 'fly))
   (test "animation-named returns a plist animation as an alist" '((#:name . p) (#:frames . (1)))

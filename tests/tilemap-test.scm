@@ -1,6 +1,21 @@
 ;;; (downstroke tilemap), in-memory part: list->tilemap, cells, sizes.
 
-(import scheme (chicken base) (downstroke test) (downstroke tilemap) srfi-4)
+(import scheme (chicken base) (chicken string) (chicken fixnum) (chicken condition) (downstroke test) (downstroke tilemap) srfi-4)
+
+;; The error's text contains every one of `parts` (tm- prefix: every suite
+;; is loaded into one toplevel).
+(define (tm-says? . parts)
+  (lambda (exn)
+    (let ((text (error-text exn)))
+      (let loop ((parts parts))
+        (or (null? parts)
+            (and (substring-index (car parts) text) (loop (cdr parts))))))))
+
+;; Raised by procedure `who`, and its text contains every one of `parts`.
+(define (tm-raised? who . parts)
+  (lambda (exn)
+    (and (eq? who ((condition-property-accessor 'exn 'location #f) exn))
+         ((apply tm-says? parts) exn))))
 
 (test-group "list->tilemap"
   (let ((tm (list->tilemap '((0 1 2) (3 0 5)) tile-width: 8 tile-height: 4)))
@@ -34,7 +49,52 @@
     (test "a layer by index" 9 (tilemap-tile-at tm 1 0 1))
     (test "a layer marked collides=#f does not collide" '(#t #f)
           (list (tilemap-solid? tm 0 0) (tilemap-solid? tm 1 0)))
-    (test-error "no such layer" (tilemap-tile-at tm 0 0 "sky")))
+    (test-error "no such layer" (tilemap-tile-at tm 0 0 "sky"))
+    (test-group "an unknown layer is an error outside the map too"
+      (test-error "by name, a cell past the right edge" (tm-says? "no such layer" "sky")
+                  (tilemap-tile-at tm 2 0 "sky"))
+      (test-error "by name, a negative cell" (tm-says? "no such layer" "sky")
+                  (tilemap-cell-at tm -1 -1 "sky"))
+      (test-error "by index, far outside (bignum)" (tm-says? "no such layer" "3")
+                  (tilemap-tile-at tm (expt 2 80) 0 3))
+      (test-error "by index, flags" (tm-says? "no such layer" "7")
+                  (tilemap-flags-at tm 5 5 7))
+      (test-error "a negative index" (tm-says? "no such layer" "-1")
+                  (tilemap-cell-at tm 0 0 -1))
+      (test "a known layer outside the map is still 0" '(0 0 ())
+            (list (tilemap-tile-at tm 2 0 "deco") (tilemap-cell-at tm -1 0 2)
+                  (tilemap-flags-at tm 0 1 "walls")))))
+  (test-error "a map without layers has no layer 0" (tm-says? "no such layer")
+              (tilemap-tile-at (make-tilemap 0 0 16 16 '()) 0 0))
   (test-error "a layer of the wrong size"
               (make-tilemap 3 1 16 16 (list (make-layer "a" 2 1 (u32vector 0 0)))))
   (test-error "data of the wrong length" (make-layer "a" 2 2 (u32vector 0 0))))
+
+(test-group "cell coordinates must be exact integers"
+  (let ((tm (list->tilemap '((0 1 2) (3 0 5)))))
+    (test-error "a flonum column" (tm-raised? 'tilemap-tile-at "col" "1.0")
+                (tilemap-tile-at tm 1.0 0))
+    (test-error "a flonum row" (tm-raised? 'tilemap-tile-at "row" "0.0")
+                (tilemap-tile-at tm 1 0.))
+    (test-error "a flonum outside the map" (tm-says? "col" "-7.5")
+                (tilemap-tile-at tm -7.5 0))
+    (test-error "a rational column" (tm-raised? 'tilemap-cell-at "col" "1/2")
+                (tilemap-cell-at tm 1/2 0))
+    (test-error "a non-number row" (tm-raised? 'tilemap-flags-at "row" "x")
+                (tilemap-flags-at tm 0 'x))
+    (test-error "tilemap-solid?: a flonum" (tm-raised? 'tilemap-solid? "col" "1.0")
+                (tilemap-solid? tm 1.0 0))
+    (test-error "tilemap-solid?: a string row" (tm-raised? 'tilemap-solid? "row" "\"1\"")
+                (tilemap-solid? tm 0 "1"))
+    (test-error "+inf.0" (tm-says? "col") (tilemap-tile-at tm +inf.0 0))
+    (test-error "a bad coordinate and an unknown layer: still an error"
+                (tilemap-tile-at tm 0.5 0 "sky"))
+    (test "bignums outside the map answer 0" '(0 0 0 ())
+          (list (tilemap-tile-at tm (- (expt 2 80)) 0) (tilemap-cell-at tm 0 (expt 2 70))
+                (tilemap-tile-at tm (expt 2 62) (- (expt 2 62)))
+                (tilemap-flags-at tm (expt 2 100) (expt 2 100))))
+    (test "bignums are not solid" '(#f #f)
+          (list (tilemap-solid? tm (expt 2 80) 0) (tilemap-solid? tm 0 (- (expt 2 80)))))
+    (test "the largest fixnums are outside too" '(0 #f)
+          (list (tilemap-tile-at tm most-positive-fixnum most-negative-fixnum)
+                (tilemap-solid? tm most-negative-fixnum most-positive-fixnum)))))

@@ -230,7 +230,10 @@
           (list (tilemap-solid? tm -4 -4) (tilemap-solid? tm 3 3) (tilemap-solid? tm 7 -5)
                 (tilemap-solid? tm -5 -4) (tilemap-solid? tm 8 -5) (tilemap-solid? tm 0 4)))
     (test "outside the union is empty" '(0 0)
-          (list (tilemap-tile-at tm -5 0 "a") (tilemap-tile-at tm 0 -9 "b"))))
+          (list (tilemap-tile-at tm -5 0 "a") (tilemap-tile-at tm 0 -9 "b")))
+    (test-error "an unknown layer inside the union" (tilemap-tile-at tm -4 -4 "c"))
+    (test-error "an unknown layer outside the union" (tilemap-tile-at tm -5 0 "c"))
+    (test-error "an unknown layer index outside the union" (tilemap-cell-at tm 100 100 2)))
   (let ((tm (load-tilemap (tmx-fixture "enc-csv.tmx"))))
     (test "finite maps start at (0, 0)" '(0 0 #f)
           (list (tilemap-origin-col tm) (tilemap-origin-row tm) (tilemap-infinite? tm)))))
@@ -480,6 +483,18 @@
   (let ((p (tmx-write "badw.tmx" (tmx-replace-first (tmx-map tmx-csv-data) "width=\"2\"" "width=\"two\""))))
     (test-error "a non-numeric width" (tmx-says p "width=\"two\"" "not a non-negative integer")
                 (load-tilemap p)))
+  (let ((p (tmx-write "badbool.tmx"
+                      (tmx-replace-first (tmx-map tmx-csv-data) "<layer id=\"1\" name=\"L\""
+                                         "<layer id=\"1\" name=\"L\" visible=\"yes\""))))
+    (test-error "a bad boolean says what is accepted"
+                (tmx-says p "visible=\"yes\"" "is not 0, 1, true or false")
+                (load-tilemap p)))
+  (let ((p (tmx-write "textbool.tmx"
+                      (tmx-replace-first (tmx-map tmx-csv-data) "<layer id=\"1\" name=\"L\""
+                                         "<layer id=\"1\" name=\"L\" visible=\"false\" locked=\"true\""))))
+    (test "true and false are accepted as booleans" '(#f #t)
+          (let ((l (car (tilemap-layers (load-tilemap p)))))
+            (list (layer-visible? l) (layer-locked? l)))))
   (let ((p (tmx-write "huge.tmx" (tmx-replace-first (tmx-map tmx-csv-data) "width=\"2\"" "width=\"4000000000\""))))
     (test-error "a map too large to allocate" (tmx-says p "limit") (load-tilemap p)))
   (let ((p (tmx-write "layersize.tmx"
@@ -507,3 +522,24 @@
     (test-error "a chunk of the wrong length" (tmx-says p "chunk at (-3, 0)" "3 cells, expected 2")
                 (load-tilemap p)))
   (test-error "not a string" (load-tilemap 'level1)))
+
+(test-group "only a bool false collides property opts a layer out"
+  (let* ((layer (lambda (id name prop cells)
+                  (string-append
+                   "<layer id=\"" id "\" name=\"" name "\" width=\"2\" height=\"2\"><properties>"
+                   prop "</properties><data encoding=\"csv\">" cells "</data></layer>")))
+         (p (tmx-write "collides.tmx"
+                       (tmx-map "<data encoding=\"csv\">0,0,0,0</data>"
+                                extra: (string-append
+                                        (layer "2" "string" "<property name=\"collides\" value=\"false\"/>" "1,0,0,0")
+                                        (layer "3" "int" "<property name=\"collides\" type=\"int\" value=\"0\"/>" "0,1,0,0")
+                                        (layer "4" "bool" "<property name=\"collides\" type=\"bool\" value=\"false\"/>" "0,0,1,0")))))
+         (tm (load-tilemap p)))
+    (test "the property values" '("false" 0 #f)
+          (map (lambda (l) (property-ref (layer-properties l) "collides"))
+               (cdr (tilemap-layers tm))))
+    (test "layer-collides?: string \"false\" and int 0 still collide" '(#t #t #f)
+          (map layer-collides? (cdr (tilemap-layers tm))))
+    (test "solid cells" '(#t #t #f #f)
+          (list (tilemap-solid? tm 0 0) (tilemap-solid? tm 1 0)
+                (tilemap-solid? tm 0 1) (tilemap-solid? tm 1 1)))))

@@ -1,5 +1,5 @@
 (import (downstroke test) (downstroke entity) (downstroke tween)
-        scheme (chicken base) (chicken string) (chicken format))
+        scheme (chicken base) (chicken string) (chicken format) (chicken condition))
 
 ;;; Helpers (prefixed tw- because every suite is loaded into one toplevel).
 
@@ -10,6 +10,12 @@
       (let loop ((parts parts))
         (or (null? parts)
             (and (substring-index (car parts) text) (loop (cdr parts))))))))
+
+;; Raised by procedure `who`, and the error's text contains every one of `parts`.
+(define (tw-raised? who . parts)
+  (lambda (exn)
+    (and (eq? who ((condition-property-accessor 'exn 'location #f) exn))
+         ((apply tw-says? parts) exn))))
 
 ;; Step `t` over `e` once per dt in `dts`; returns (values tween entity).
 (define (tw-run t e dts)
@@ -181,6 +187,18 @@
       (let-values (((t2 e2) (tween-step t tw-box 10)))
         (and (tween-finished? t2) (equal? e2 tw-box)))))
   (test-assert "a tween is not an entity alist" (not (entity? (tw-x 100))))
+  (test "tween-step accepts a plist entity and returns an alist" '((#:x . 3) (#:y . 2))
+        (let-values (((t2 e2) (tween-step (make-tween '(#:x 1 #:y 2) props: '((#:x . 5)) duration: 4)
+                                          '(#:x 1 #:y 2) 2)))
+          e2))
+  (test "tween-step with a plist, run to the end" '(#t ((#:x . 5) (#:y . 2)))
+        (let-values (((t2 e2) (tween-step (make-tween '(#:x 1 #:y 2) props: '((#:x . 5)) duration: 4)
+                                          '(#:x 1 #:y 2) 10)))
+          (list (tween-finished? t2) e2)))
+  (test "tween-step with a plist while the delay runs returns it as an alist" '((#:x . 1))
+        (let-values (((t2 e2) (tween-step (make-tween '(#:x 1) props: '((#:x . 5)) delay: 10)
+                                          '(#:x 1) 2)))
+          e2))
 
   (test-group "bad arguments raise errors naming them"
     (test-error "props missing" (tw-says? "props") (make-tween tw-box duration: 10))
@@ -225,7 +243,13 @@
     (test-error "tween-step: NaN dt" (tw-says? "dt" "nan")
                 (tween-step (tw-x 1) tw-box (/ 0. 0.)))
     (test-error "tween-step: not a tween" (tw-says? "tween" "oops")
-                (tween-step 'oops tw-box 1))))
+                (tween-step 'oops tw-box 1))
+    (test-error "tween-step: an entity that is neither alist nor plist"
+                (tw-raised? 'tween-step "entity" "oops")
+                (tween-step (tw-x 1) 'oops 1))
+    (test-error "tween-step: a list of numbers is not an entity"
+                (tw-raised? 'tween-step "entity" "(1 2)")
+                (tween-step (tw-x 1) '(1 2) 1))))
 
 (test-group "values mid-tween"
   (test "linear, 16 ms of 300: 100 * 16/300" 16/3
