@@ -10,11 +10,13 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util srfi-197 entity tween animation xml decode tilemap scene broadphase physics engine
+MODULES := test util srfi-197 entity tween animation xml decode tilemap scene broadphase physics engine sdl2 renderer
 
 # C libraries a module binds through the FFI (passed to the linker by csc).
 LINK_xml    := -L -lexpat
 LINK_decode := -L -lz -L -lzstd
+# SDL2's flags as Debian's pkg-config gives them (the .egg cannot run pkg-config).
+LINK_sdl2   := -C -I/usr/include/SDL2 -C -D_REENTRANT -L -lSDL2 -L -lSDL2_image
 
 LIBS := $(patsubst %,$(BUILD)/downstroke.%.so,$(MODULES))
 
@@ -53,6 +55,7 @@ $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.xml.so $(BUILD)/downstroke
 $(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.tilemap.so
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
 $(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
+$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
 
 # Tiled's own example maps, from Debian's tiled package (cached in tests/data).
 examples:

@@ -1,0 +1,255 @@
+;;; (downstroke renderer): drawing a scene with an SDL renderer.
+;;;
+;;;   (render-scene! renderer scene #!key view-width view-height textures)
+;;;
+;;; draws, in this order:
+;;;   1. the whole target cleared to the scene's background, a list
+;;;      (r g b [a]) of 0..255 values; black when the background is #f;
+;;;   2. every visible tile layer of the scene's tilemap, in the map's
+;;;      order, with the layer's offset and its opacity (as the texture's
+;;;      alpha modulation). Only the cells that the camera view touches are
+;;;      drawn: a cell partly inside the view at any edge is drawn. A cell's
+;;;      image comes from the tileset covering its gid (columns, spacing,
+;;;      margin; image-collection tilesets use each tile's own image), and
+;;;      its flip flags are honoured (horizontal, vertical, and diagonal, the
+;;;      last as a 90 degree rotation, exact for square tiles). A tile whose
+;;;      tileset tiles are taller than the map's cells is drawn bottom-aligned
+;;;      to its cell, as Tiled does;
+;;;   3. the entities, in list order: with #:tile-id, that tile of the
+;;;      scene's tileset (scene-tileset, else the tilemap's first tileset)
+;;;      from scene-tileset-texture (else the texture `textures` gives for
+;;;      the tileset's image) at the entity's #:x #:y, at the tileset's tile
+;;;      size, mirrored horizontally when #:facing is -1; else, with #:color
+;;;      (r g b [a]), a filled #:width x #:height rectangle of that colour
+;;;      (alpha below 255 blends); else nothing. An entity whose #:tile-id
+;;;      cannot be drawn (no tileset or texture) falls through to #:color.
+;;;      #:tile-id numbers tiles as gids of the scene's tileset: local tile
+;;;      id + the tileset's first gid (1 for a map's first tileset), the same
+;;;      numbers the map's cells use.
+;;;
+;;; The rounding rule: a world position x (an exact integer, a rational or
+;;; a flonum) is drawn at the whole screen pixel
+;;;     screen-x = floor(x - camera-x),   screen-y = floor(y - camera-y)
+;;; for tiles (x = column * tile-width + layer offset) and entities alike;
+;;; sizes are whole pixels already (tile sizes) or rounded the same way
+;;; (an entity's rect covers floor(x - cx) to floor(x + w - cx)).
+;;; So everything moves by whole pixels together and nothing jitters against
+;;; the map.
+;;;
+;;; The view: view-width x view-height pixels starting at the camera; by
+;;; default the renderer's logical size, or its output size when none is set.
+;;;
+;;; Textures for tilesets: `textures:` maps a tileset image path (the
+;;; resolved path `image-source` gives) to a texture of this renderer. It is
+;;; either a procedure (path -> texture or #f) or an alist of
+;;; (path . texture) compared with equal?. The scene's tileset-texture is
+;;; used for the scene's tileset when `textures` gives nothing. A tile
+;;; layer needing a tileset image with no texture is an error naming the path.
+;;;
+;;; Not drawn (yet): parallax factors, layer tint, object, image and group
+;;; layers' own content (their tile children are drawn), hexagonal and
+;;; isometric orientations (cells are laid out orthogonally).
+
+(module (downstroke renderer)
+  (render-scene! render-tile-layers! render-entities! render-entity!
+   screen-coordinate tileset-source-rect)
+
+  (import scheme (chicken base) (chicken format) srfi-4
+          (downstroke sdl2) (downstroke entity) (downstroke scene)
+          (downstroke tilemap))
+
+  ;; The rounding rule (see above): world coordinate -> whole screen pixel.
+  (define (screen-coordinate x camera)
+    (let ((v (floor (- x camera))))
+      (if (exact? v) v (inexact->exact v))))
+
+  ;; The texture for an image path, from a procedure or an alist; #f if none.
+  (define (lookup-texture textures path)
+    (cond ((not textures) #f)
+          ((procedure? textures) (textures path))
+          ((list? textures) (let ((p (assoc path textures))) (and p (cdr p))))
+          (else (error 'render-scene! "textures: must be a procedure or an alist" textures))))
+
+  ;; The pixel rectangle of local tile `local` in a tileset image:
+  ;; (values x y w h), from the tileset's columns, spacing and margin.
+  (define (tileset-source-rect ts local)
+    (let* ((tw (tileset-tile-width ts))
+           (th (tileset-tile-height ts))
+           (cols (max 1 (or (tileset-columns ts) 1)))
+           (sp (or (tileset-spacing ts) 0))
+           (mg (or (tileset-margin ts) 0)))
+      (values (+ mg (* (modulo local cols) (+ tw sp)))
+              (+ mg (* (quotient local cols) (+ th sp)))
+              tw th)))
+
+  ;; Copy with Tiled's flip flags: diagonal (a transpose, applied first),
+  ;; then horizontal, then vertical. SDL flips before it rotates, so the
+  ;; transpose followed by h/v flips equals a 90 degree clockwise rotation
+  ;; of the image flipped horizontally when v is set and vertically when h
+  ;; is not.
+  (define (copy-flipped! r tex src dst h? v? d?)
+    (if d?
+        (render-copy! r tex src dst
+                      angle: 90
+                      flip: (append (if v? '(horizontal) '()) (if h? '() '(vertical))))
+        (render-copy! r tex src dst
+                      flip: (append (if h? '(horizontal) '()) (if v? '(vertical) '())))))
+
+  (define (background-color bg)
+    (cond ((not bg) '(0 0 0 255))
+          ((and (list? bg) (<= 3 (length bg) 4))
+           (if (= (length bg) 3) (append bg '(255)) bg))
+          ((and (pair? bg) (eq? (car bg) 'color)) (background-color (cdr bg)))
+          (else (error 'render-scene! "background: must be (r g b [a]) or #f" bg))))
+
+  ;; The view size: explicit, else logical size, else output size.
+  (define (view-size r vw vh)
+    (if (and vw vh)
+        (values vw vh)
+        (receive (lw lh) (render-logical-size r)
+          (if (and (> lw 0) (> lh 0))
+              (values (or vw lw) (or vh lh))
+              (receive (ow oh) (renderer-output-size r)
+                (values (or vw ow) (or vh oh)))))))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Tile layers
+
+  ;; Everything needed to draw one gid: (values texture sx sy sw sh), or #f
+  ;; when the gid belongs to no tileset or tile. `tex-for` maps a path to a
+  ;; texture or raises.
+  (define (gid-image tm gid tex-for)
+    (let ((ts (tilemap-tileset-for tm gid)))
+      (if (not ts)
+          (values #f 0 0 0 0)
+          (let ((local (- gid (tileset-first-gid ts))))
+            (if (tileset-image ts)
+                (receive (sx sy sw sh) (tileset-source-rect ts local)
+                  (values (tex-for ts (image-source (tileset-image ts))) sx sy sw sh))
+                ;; an image collection: the tile's own image
+                (let* ((tile (tileset-tile ts local))
+                       (img (and tile (tile-image tile))))
+                  (if (not img)
+                      (values #f 0 0 0 0)
+                      (let ((tex (tex-for ts (image-source img))))
+                        (receive (iw ih) (texture-size tex)
+                          (values tex (tile-x tile) (tile-y tile)
+                                  (or (tile-width tile) iw)
+                                  (or (tile-height tile) ih)))))))))))
+
+  ;; Draw the visible tile layers of `tm` through a camera at (cx, cy) and a
+  ;; view of vw x vh pixels. `tex-for` is (tileset path) -> texture.
+  (define (render-tile-layers! r tm cx cy vw vh tex-for)
+    (let ((tw (tilemap-tile-width tm))
+          (th (tilemap-tile-height tm))
+          (col0 (tilemap-origin-col tm))
+          (row0 (tilemap-origin-row tm)))
+      (for-each
+       (lambda (layer)
+         (when (and (eq? (layer-kind layer) 'tile)
+                    (layer-visible? layer)
+                    (> (layer-opacity layer) 0))
+           (let* ((ox (layer-offset-x layer))
+                  (oy (layer-offset-y layer))
+                  (alpha (inexact->exact (round (* 255 (min 1 (layer-opacity layer))))))
+                  ;; cells whose span [c*tw+ox, (c+1)*tw+ox) meets [cx, cx+vw)
+                  (c-min (max col0 (floor-int (/ (- cx ox) tw))))
+                  (c-max (min (+ col0 (tilemap-width tm) -1)
+                              (- (ceiling-int (/ (- (+ cx vw) ox) tw)) 1)))
+                  (r-min (max row0 (floor-int (/ (- cy oy) th))))
+                  (r-max (min (+ row0 (tilemap-height tm) -1)
+                              (- (ceiling-int (/ (- (+ cy vh) oy) th)) 1)))
+                  (data (layer-data layer))
+                  (width (tilemap-width tm))
+                  (touched '()))           ; textures whose alpha mod we set
+             (do ((row r-min (+ row 1))) ((> row r-max))
+               (do ((col c-min (+ col 1))) ((> col c-max))
+                 (let ((cell (u32vector-ref data (+ (* (- row row0) width) (- col col0)))))
+                   (unless (zero? (cell-gid cell))
+                     (receive (tex sx sy sw sh) (gid-image tm (cell-gid cell) tex-for)
+                       (when tex
+                         (unless (memq tex touched)
+                           (set! touched (cons tex touched))
+                           (texture-alpha-mod-set! tex alpha))
+                         (copy-flipped!
+                          r tex (make-rect sx sy sw sh)
+                          (make-rect (screen-coordinate (+ (* col tw) ox) cx)
+                                     ;; taller tiles stand on their cell's bottom
+                                     (screen-coordinate (+ (* row th) oy (- th sh)) cy)
+                                     sw sh)
+                          (cell-flipped-horizontally? cell)
+                          (cell-flipped-vertically? cell)
+                          (cell-flipped-diagonally? cell))))))))
+             ;; textures are shared: leave them opaque for the next user
+             (for-each (lambda (tex) (texture-alpha-mod-set! tex 255)) touched))))
+       (tilemap-layers tm))))
+
+  (define (floor-int x) (let ((v (floor x))) (if (exact? v) v (inexact->exact v))))
+  (define (ceiling-int x) (let ((v (ceiling x))) (if (exact? v) v (inexact->exact v))))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Entities
+
+  (define (color-components who c)
+    (unless (and (list? c) (<= 3 (length c) 4))
+      (error who "#:color must be (r g b [a])" c))
+    (if (= (length c) 3) (append c '(255)) c))
+
+  ;; One entity (see the head of this file). tileset/texture: the sprite
+  ;; sheet, either may be #f.
+  (define (render-entity! r e cx cy tileset texture)
+    (let ((tile-id (entity-ref e #:tile-id #f))
+          (color (entity-ref e #:color #f))
+          (x (entity-ref e #:x 0))
+          (y (entity-ref e #:y 0)))
+      (cond ((and tile-id tileset texture
+                  (>= (- tile-id (tileset-first-gid tileset)) 0))
+             (receive (sx sy sw sh)
+                 (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
+               (render-copy! r texture (make-rect sx sy sw sh)
+                             (make-rect (screen-coordinate x cx) (screen-coordinate y cy) sw sh)
+                             flip: (if (eqv? (entity-ref e #:facing 1) -1) '(horizontal) '()))))
+            (color
+             (let* ((c (color-components 'render-scene! color))
+                    (x0 (screen-coordinate x cx))
+                    (y0 (screen-coordinate y cy))
+                    (x1 (screen-coordinate (+ x (entity-ref e #:width 0)) cx))
+                    (y1 (screen-coordinate (+ y (entity-ref e #:height 0)) cy)))
+               (when (and (> x1 x0) (> y1 y0))
+                 (render-draw-blend-mode-set! r (if (< (list-ref c 3) 255) 'blend 'none))
+                 (apply render-draw-color-set! r c)
+                 (render-fill-rect! r (make-rect x0 y0 (- x1 x0) (- y1 y0))))))
+            (else (void)))))
+
+  (define (render-entities! r entities cx cy tileset texture)
+    (for-each (lambda (e) (render-entity! r e cx cy tileset texture)) entities))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Scenes
+
+  (define (render-scene! r scene #!key (view-width #f) (view-height #f) (textures #f))
+    (let* ((camera (scene-camera scene))
+           (cx (if camera (camera-x camera) 0))
+           (cy (if camera (camera-y camera) 0))
+           (tm (scene-tilemap scene))
+           (sprite-tileset (or (scene-tileset scene)
+                               (and tm (pair? (tilemap-tilesets tm))
+                                    (car (tilemap-tilesets tm)))))
+           (bg (background-color (scene-background scene))))
+      (receive (vw vh) (view-size r view-width view-height)
+        (let ((tex-for
+               (lambda (ts path)
+                 (or (lookup-texture textures path)
+                     (and (eq? ts sprite-tileset) (scene-tileset-texture scene))
+                     (error 'render-scene!
+                            (sprintf "no texture for the tileset image ~s (pass textures:)" path))))))
+          (render-draw-blend-mode-set! r 'none)
+          (apply render-draw-color-set! r bg)
+          (render-clear! r)
+          (when tm (render-tile-layers! r tm cx cy vw vh tex-for))
+          (render-entities! r (scene-entities scene) cx cy sprite-tileset
+                            (or (scene-tileset-texture scene)
+                                (and sprite-tileset (tileset-image sprite-tileset)
+                                     (lookup-texture textures
+                                                     (image-source (tileset-image sprite-tileset))))))
+          (void))))))

@@ -1,0 +1,660 @@
+;;; (downstroke sdl2): the part of SDL2 and SDL2_image the library uses,
+;;; bound through CHICKEN's FFI (Debian's libsdl2-dev, libsdl2-image-dev).
+;;;
+;;; Naming follows the sdl2 egg: SDL names in kebab-case, `!` on every call
+;;; with an effect, symbols for enums, multiple values for pairs.
+;;;
+;;; Resources. Windows, renderers, textures and surfaces are Scheme records
+;;; around a native pointer. Each is freed exactly once: by its destroy
+;;; procedure (destroy-window!, destroy-renderer!, destroy-texture!,
+;;; free-surface!), which may be called any number of times, or else by a
+;;; finalizer when the record becomes garbage (the finalizer does nothing
+;;; if the resource was already destroyed). Ownership follows SDL's:
+;;;   - destroying a renderer frees its textures (SDL does that), so their
+;;;     records become dead and destroying them afterwards does nothing;
+;;;   - destroying a window or the surface a software renderer draws on
+;;;     destroys that renderer first;
+;;;   - quit! invalidates every window, renderer and texture made before it
+;;;     (SDL_Quit tears down the video subsystem): their records become dead
+;;;     and are never passed to SDL again. Surfaces are plain memory and are
+;;;     still freed.
+;;; Using a dead resource is an error naming the call.
+;;;
+;;; Errors. A failing SDL call raises a CHICKEN error (kinds exn and sdl2)
+;;; whose location is the Scheme procedure and whose message names the SDL
+;;; call and carries SDL_GetError's text; image loading and saving also
+;;; name the file: "IMG_LoadTexture: cannot load \"x.png\": <SDL's text>".
+;;;
+;;; Events. poll-event! returns #f when the queue is empty, else a list:
+;;;   (quit)
+;;;   (key-down KEY REPEAT?)   (key-up KEY REPEAT?)
+;;;   (other TYPE)             any other event, TYPE its SDL type number
+;;; KEY is a symbol: a..z, n-0..n-9, left right up down, return escape
+;;; space tab backspace delete insert home end page-up page-down, lshift
+;;; rshift lctrl rctrl lalt ralt lgui rgui, f1..f12, minus equals comma
+;;; period slash semicolon, or unknown. push-key-event! queues a synthetic
+;;; key event (tests, scripted input), push-quit-event! a quit event.
+
+(module (downstroke sdl2)
+  (;; subsystem
+   init! quit! sdl-initialized? get-error get-ticks delay!
+   ;; rects
+   make-rect rect? rect-x rect-y rect-w rect-h
+   ;; windows
+   create-window! destroy-window! window? window-alive? window-size
+   window-title-set!
+   ;; renderers
+   create-renderer! create-software-renderer! destroy-renderer! renderer?
+   renderer-alive? renderer-software? renderer-output-size
+   render-set-logical-size! render-logical-size
+   render-draw-color-set! render-draw-blend-mode-set!
+   render-clear! render-fill-rect! render-draw-rect! render-copy!
+   render-present! render-read-pixels
+   ;; textures
+   img-load-texture! destroy-texture! texture? texture-alive? texture-size
+   texture-alpha-mod-set! texture-alpha-mod
+   ;; surfaces
+   create-rgba-surface! free-surface! surface? surface-alive? surface-size
+   img-save-png!
+   ;; events
+   poll-event! poll-events! push-key-event! push-quit-event!
+   key-symbols keycode->key key->keycode)
+
+  (import scheme (chicken base) (chicken foreign) (chicken condition)
+          (chicken gc) (chicken format) (chicken bitwise) srfi-4)
+
+  (foreign-declare #<<EOF
+#include <SDL.h>
+#include <SDL_image.h>
+
+static SDL_Event downstroke_event;
+
+static int downstroke_poll(void) {
+  if (SDL_PollEvent(&downstroke_event)) return (int)downstroke_event.type;
+  return -1;
+}
+
+static int downstroke_push_key(int down, int keycode, int repeat) {
+  SDL_Event e;
+  SDL_zero(e);
+  e.type = down ? SDL_KEYDOWN : SDL_KEYUP;
+  e.key.timestamp = SDL_GetTicks();
+  e.key.state = down ? SDL_PRESSED : SDL_RELEASED;
+  e.key.repeat = repeat ? 1 : 0;
+  e.key.keysym.sym = (SDL_Keycode)keycode;
+  e.key.keysym.scancode = SDL_GetScancodeFromKey((SDL_Keycode)keycode);
+  e.key.keysym.mod = KMOD_NONE;
+  return SDL_PushEvent(&e);
+}
+
+static int downstroke_push_quit(void) {
+  SDL_Event e;
+  SDL_zero(e);
+  e.type = SDL_QUIT;
+  e.quit.timestamp = SDL_GetTicks();
+  return SDL_PushEvent(&e);
+}
+
+/* A rect argument: x < 0 in `use` means NULL (the whole target). */
+static int downstroke_copy(SDL_Renderer *r, SDL_Texture *t, int use_src,
+                           int sx, int sy, int sw, int sh, int use_dst,
+                           int dx, int dy, int dw, int dh,
+                           double angle, int hflip, int vflip) {
+  SDL_Rect src = { sx, sy, sw, sh }, dst = { dx, dy, dw, dh };
+  int flip = (hflip ? SDL_FLIP_HORIZONTAL : 0) | (vflip ? SDL_FLIP_VERTICAL : 0);
+  if (flip == 0 && angle == 0.0)
+    return SDL_RenderCopy(r, t, use_src ? &src : NULL, use_dst ? &dst : NULL);
+  return SDL_RenderCopyEx(r, t, use_src ? &src : NULL, use_dst ? &dst : NULL,
+                          angle, NULL, (SDL_RendererFlip)flip);
+}
+EOF
+)
+
+  ;;; ------------------------------------------------------------------
+  ;;; Errors
+
+  (define get-error (foreign-lambda c-string "SDL_GetError"))
+
+  (define (sdl-error who call #!optional detail)
+    (signal
+     (make-composite-condition
+      (make-property-condition
+       'exn 'location who
+       'message (if detail
+                    (sprintf "~a: ~a: ~a" call detail (get-error))
+                    (sprintf "~a: ~a" call (get-error)))
+       'arguments '())
+      (make-property-condition 'sdl2 'call call))))
+
+  ;; SDL's int returns: negative is failure.
+  (define (check-status who call status)
+    (when (< status 0) (sdl-error who call))
+    (void))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Subsystem. `generation` counts init!/quit! cycles, so resources made
+  ;;; before a quit! are known to be gone.
+
+  (define initialized? #f)
+  (define generation 0)
+
+  (define (sdl-initialized?) initialized?)
+
+  ;; (init!) or (init! '(video events timer)); video is the default.
+  (define (init! #!optional (subsystems '(video)))
+    (let ((flags (foldl (lambda (acc s)
+                          (bitwise-ior acc
+                                        (case s
+                                          ((video) (foreign-value "SDL_INIT_VIDEO" unsigned-int))
+                                          ((events) (foreign-value "SDL_INIT_EVENTS" unsigned-int))
+                                          ((timer) (foreign-value "SDL_INIT_TIMER" unsigned-int))
+                                          ((audio) (foreign-value "SDL_INIT_AUDIO" unsigned-int))
+                                          ((game-controller)
+                                           (foreign-value "SDL_INIT_GAMECONTROLLER" unsigned-int))
+                                          (else (error 'init! "unknown SDL subsystem" s)))))
+                        0 subsystems)))
+      (check-status 'init! "SDL_Init"
+                    ((foreign-lambda int "SDL_Init" unsigned-int) flags))
+      ;; PNG support; IMG_Init answers the formats it could set up.
+      (let ((png (foreign-value "IMG_INIT_PNG" int)))
+        (when (zero? (bitwise-and png ((foreign-lambda int "IMG_Init" int) png)))
+          (sdl-error 'init! "IMG_Init")))
+      (unless initialized? (set! generation (+ generation 1)))
+      (set! initialized? #t)
+      (void)))
+
+  (define (quit!)
+    (when initialized?
+      ((foreign-lambda void "IMG_Quit"))
+      ((foreign-lambda void "SDL_Quit"))
+      (set! initialized? #f))
+    (void))
+
+  (define get-ticks (foreign-lambda unsigned-integer32 "SDL_GetTicks"))
+  (define (delay! ms) ((foreign-lambda void "SDL_Delay" unsigned-integer32) ms))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Rects
+
+  (define-record-type rect
+    (make-rect x y w h)
+    rect?
+    (x rect-x) (y rect-y) (w rect-w) (h rect-h))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Resource records. `ptr` is the native pointer, #f once destroyed.
+
+  (define-record-type window
+    (%make-window ptr generation renderer)
+    window?
+    (ptr window-ptr window-ptr-set!)
+    (generation window-generation)
+    (renderer window-renderer window-renderer-set!))
+
+  (define-record-type surface
+    (%make-surface ptr renderer)
+    surface?
+    (ptr surface-ptr surface-ptr-set!)
+    (renderer surface-renderer surface-renderer-set!))
+
+  ;; parent: the window or surface it draws to.
+  (define-record-type renderer
+    (%make-renderer ptr generation parent software?)
+    renderer?
+    (ptr renderer-ptr renderer-ptr-set!)
+    (generation renderer-generation)
+    (parent renderer-parent)
+    (software? renderer-software?))
+
+  (define-record-type texture
+    (%make-texture ptr renderer width height)
+    texture?
+    (ptr texture-ptr texture-ptr-set!)
+    (renderer texture-renderer)
+    (width texture-width)
+    (height texture-height))
+
+  (define (current? gen) (and initialized? (= gen generation)))
+
+  (define (window-alive? w)
+    (and (window-ptr w) (current? (window-generation w))))
+
+  (define (renderer-alive? r)
+    (and (renderer-ptr r)
+         (current? (renderer-generation r))
+         (let ((p (renderer-parent r)))
+           (if (window? p) (window-alive? p) (surface-alive? p)))))
+
+  (define (texture-alive? t)
+    (and (texture-ptr t) (renderer-alive? (texture-renderer t))))
+
+  (define (surface-alive? s) (and (surface-ptr s) #t))
+
+  (define (live-window who w)
+    (unless (and (window? w) (window-alive? w))
+      (error who (sprintf "~a: not a live window" who) w))
+    (window-ptr w))
+
+  (define (live-renderer who r)
+    (unless (and (renderer? r) (renderer-alive? r))
+      (error who (sprintf "~a: not a live renderer" who) r))
+    (renderer-ptr r))
+
+  (define (live-texture who t)
+    (unless (and (texture? t) (texture-alive? t))
+      (error who (sprintf "~a: not a live texture" who) t))
+    (texture-ptr t))
+
+  (define (live-surface who s)
+    (unless (and (surface? s) (surface-alive? s))
+      (error who (sprintf "~a: not a live surface" who) s))
+    (surface-ptr s))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Destruction: idempotent, and the finalizers call the same procedures.
+
+  (define (destroy-texture! t)
+    (let ((p (texture-ptr t)))
+      (when p
+        (texture-ptr-set! t #f)
+        ;; A dead renderer has already freed its textures.
+        (when (renderer-alive? (texture-renderer t))
+          ((foreign-lambda void "SDL_DestroyTexture" c-pointer) p))))
+    (void))
+
+  (define (destroy-renderer! r)
+    (let ((p (renderer-ptr r))
+          (alive (renderer-alive? r)))
+      (when p
+        (renderer-ptr-set! r #f)
+        (when alive
+          ((foreign-lambda void "SDL_DestroyRenderer" c-pointer) p))))
+    (void))
+
+  (define (destroy-window! w)
+    (let ((p (window-ptr w))
+          (alive (window-alive? w)))
+      (when p
+        (let ((r (window-renderer w)))
+          (when r (destroy-renderer! r) (window-renderer-set! w #f)))
+        (window-ptr-set! w #f)
+        (when alive
+          ((foreign-lambda void "SDL_DestroyWindow" c-pointer) p))))
+    (void))
+
+  (define (free-surface! s)
+    (let ((p (surface-ptr s)))
+      (when p
+        (let ((r (surface-renderer s)))
+          (when r (destroy-renderer! r) (surface-renderer-set! s #f)))
+        (surface-ptr-set! s #f)
+        ((foreign-lambda void "SDL_FreeSurface" c-pointer) p)))
+    (void))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Windows
+
+  (define (window-flag sym)
+    (case sym
+      ((shown) (foreign-value "SDL_WINDOW_SHOWN" unsigned-int))
+      ((hidden) (foreign-value "SDL_WINDOW_HIDDEN" unsigned-int))
+      ((resizable) (foreign-value "SDL_WINDOW_RESIZABLE" unsigned-int))
+      ((fullscreen) (foreign-value "SDL_WINDOW_FULLSCREEN" unsigned-int))
+      ((fullscreen-desktop) (foreign-value "SDL_WINDOW_FULLSCREEN_DESKTOP" unsigned-int))
+      ((borderless) (foreign-value "SDL_WINDOW_BORDERLESS" unsigned-int))
+      ((allow-high-dpi) (foreign-value "SDL_WINDOW_ALLOW_HIGHDPI" unsigned-int))
+      (else (error 'create-window! "unknown window flag" sym))))
+
+  ;; (create-window! title x y w h #!optional flags): x and y are pixels or
+  ;; the symbols centered / undefined; flags a list of symbols.
+  (define (create-window! title x y w h #!optional (flags '(shown)))
+    (let* ((pos (lambda (v)
+                  (case v
+                    ((centered) (foreign-value "SDL_WINDOWPOS_CENTERED" int))
+                    ((undefined) (foreign-value "SDL_WINDOWPOS_UNDEFINED" int))
+                    (else v))))
+           (p ((foreign-lambda c-pointer "SDL_CreateWindow"
+                               c-string int int int int unsigned-int)
+               title (pos x) (pos y) w h
+               (foldl (lambda (acc f) (bitwise-ior acc (window-flag f))) 0 flags))))
+      (unless p (sdl-error 'create-window! "SDL_CreateWindow"))
+      (set-finalizer! (%make-window p generation #f) destroy-window!)))
+
+  (define (window-size w)
+    (let ((p (live-window 'window-size w)))
+      (let-location ((wi int 0) (hi int 0))
+        ((foreign-lambda void "SDL_GetWindowSize" c-pointer (c-pointer int) (c-pointer int))
+         p (location wi) (location hi))
+        (values wi hi))))
+
+  (define (window-title-set! w title)
+    ((foreign-lambda void "SDL_SetWindowTitle" c-pointer c-string)
+     (live-window 'window-title-set! w) title))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Renderers
+
+  (define sdl-create-renderer
+    (foreign-lambda c-pointer "SDL_CreateRenderer" c-pointer int unsigned-int))
+
+  ;; An accelerated renderer for the window, falling back to SDL's software
+  ;; renderer when no accelerated one can be made. vsync?: asks for
+  ;; presentation synchronised with the display (accelerated only).
+  (define (create-renderer! w #!key (vsync? #f))
+    (let ((wp (live-window 'create-renderer! w)))
+      (when (window-renderer w)
+        (error 'create-renderer! "the window already has a renderer" w))
+      (let* ((accel (bitwise-ior
+                     (foreign-value "SDL_RENDERER_ACCELERATED" unsigned-int)
+                     (if vsync? (foreign-value "SDL_RENDERER_PRESENTVSYNC" unsigned-int) 0)))
+             (p (sdl-create-renderer wp -1 accel))
+             (software? (not p))
+             (p (or p (sdl-create-renderer
+                       wp -1 (foreign-value "SDL_RENDERER_SOFTWARE" unsigned-int)))))
+        (unless p (sdl-error 'create-renderer! "SDL_CreateRenderer"))
+        (let ((r (%make-renderer p generation w software?)))
+          (window-renderer-set! w r)
+          (set-finalizer! r destroy-renderer!)))))
+
+  ;; A software renderer drawing into a surface: headless drawing, tests,
+  ;; screenshots. The surface must outlive it (free-surface! destroys it).
+  (define (create-software-renderer! s)
+    (let ((sp (live-surface 'create-software-renderer! s)))
+      (unless initialized? (error 'create-software-renderer! "SDL is not initialized (init!)"))
+      (when (surface-renderer s)
+        (error 'create-software-renderer! "the surface already has a renderer" s))
+      (let ((p ((foreign-lambda c-pointer "SDL_CreateSoftwareRenderer" c-pointer) sp)))
+        (unless p (sdl-error 'create-software-renderer! "SDL_CreateSoftwareRenderer"))
+        (let ((r (%make-renderer p generation s #t)))
+          (surface-renderer-set! s r)
+          (set-finalizer! r destroy-renderer!)))))
+
+  ;; The size in pixels of what the renderer draws to, ignoring any logical size.
+  (define (renderer-output-size r)
+    (let ((p (live-renderer 'renderer-output-size r)))
+      (let-location ((w int 0) (h int 0))
+        (check-status 'renderer-output-size "SDL_GetRendererOutputSize"
+                      ((foreign-lambda int "SDL_GetRendererOutputSize"
+                                       c-pointer (c-pointer int) (c-pointer int))
+                       p (location w) (location h)))
+        (values w h))))
+
+  (define (render-set-logical-size! r w h)
+    (check-status 'render-set-logical-size! "SDL_RenderSetLogicalSize"
+                  ((foreign-lambda int "SDL_RenderSetLogicalSize" c-pointer int int)
+                   (live-renderer 'render-set-logical-size! r) w h)))
+
+  ;; (values w h); 0 and 0 when no logical size is set.
+  (define (render-logical-size r)
+    (let ((p (live-renderer 'render-logical-size r)))
+      (let-location ((w int 0) (h int 0))
+        ((foreign-lambda void "SDL_RenderGetLogicalSize" c-pointer (c-pointer int) (c-pointer int))
+         p (location w) (location h))
+        (values w h))))
+
+  (define (byte who v)
+    (unless (and (fixnum? v) (<= 0 v 255))
+      (error who "a colour component must be an integer 0..255" v))
+    v)
+
+  (define (render-draw-color-set! r red green blue #!optional (alpha 255))
+    (check-status 'render-draw-color-set! "SDL_SetRenderDrawColor"
+                  ((foreign-lambda int "SDL_SetRenderDrawColor"
+                                   c-pointer unsigned-byte unsigned-byte unsigned-byte unsigned-byte)
+                   (live-renderer 'render-draw-color-set! r)
+                   (byte 'render-draw-color-set! red) (byte 'render-draw-color-set! green)
+                   (byte 'render-draw-color-set! blue) (byte 'render-draw-color-set! alpha))))
+
+  (define (blend-mode who sym)
+    (case sym
+      ((none) (foreign-value "SDL_BLENDMODE_NONE" int))
+      ((blend) (foreign-value "SDL_BLENDMODE_BLEND" int))
+      ((add) (foreign-value "SDL_BLENDMODE_ADD" int))
+      ((mod) (foreign-value "SDL_BLENDMODE_MOD" int))
+      (else (error who "unknown blend mode (none blend add mod)" sym))))
+
+  ;; How fill-rect and draw-rect combine with what is drawn: a symbol,
+  ;; none (the default: replace), blend, add or mod.
+  (define (render-draw-blend-mode-set! r mode)
+    (check-status 'render-draw-blend-mode-set! "SDL_SetRenderDrawBlendMode"
+                  ((foreign-lambda int "SDL_SetRenderDrawBlendMode" c-pointer int)
+                   (live-renderer 'render-draw-blend-mode-set! r)
+                   (blend-mode 'render-draw-blend-mode-set! mode))))
+
+  (define (render-clear! r)
+    (check-status 'render-clear! "SDL_RenderClear"
+                  ((foreign-lambda int "SDL_RenderClear" c-pointer)
+                   (live-renderer 'render-clear! r))))
+
+  (define rect-op
+    (foreign-lambda* int ((c-pointer r) (int which) (bool whole) (int x) (int y) (int w) (int h))
+      "SDL_Rect rc = { x, y, w, h };
+       C_return(which ? SDL_RenderDrawRect((SDL_Renderer*)r, whole ? NULL : &rc)
+                      : SDL_RenderFillRect((SDL_Renderer*)r, whole ? NULL : &rc));"))
+
+  (define (do-rect who call which r rect)
+    (let ((p (live-renderer who r)))
+      (check-status who call
+                    (if rect
+                        (rect-op p which #f (rect-x rect) (rect-y rect) (rect-w rect) (rect-h rect))
+                        (rect-op p which #t 0 0 0 0)))))
+
+  ;; rect: a rect, or #f for the whole target.
+  (define (render-fill-rect! r rect) (do-rect 'render-fill-rect! "SDL_RenderFillRect" 0 r rect))
+  (define (render-draw-rect! r rect) (do-rect 'render-draw-rect! "SDL_RenderDrawRect" 1 r rect))
+
+  (define sdl-copy
+    (foreign-lambda int "downstroke_copy" c-pointer c-pointer bool int int int int
+                    bool int int int int double bool bool))
+
+  ;; (render-copy! renderer texture src dst #!key flip angle): src and dst
+  ;; are rects or #f (the whole texture / target); flip is a list of the
+  ;; symbols horizontal and vertical; angle in degrees, clockwise, about
+  ;; the centre of dst.
+  (define (render-copy! r t src dst #!key (flip '()) (angle 0))
+    (let ((rp (live-renderer 'render-copy! r))
+          (tp (live-texture 'render-copy! t)))
+      (unless (eq? (texture-renderer t) r)
+        (error 'render-copy! "the texture belongs to another renderer" t))
+      (check-status
+       'render-copy! (if (and (null? flip) (zero? angle)) "SDL_RenderCopy" "SDL_RenderCopyEx")
+       (sdl-copy rp tp
+                 (and src #t)
+                 (if src (rect-x src) 0) (if src (rect-y src) 0)
+                 (if src (rect-w src) 0) (if src (rect-h src) 0)
+                 (and dst #t)
+                 (if dst (rect-x dst) 0) (if dst (rect-y dst) 0)
+                 (if dst (rect-w dst) 0) (if dst (rect-h dst) 0)
+                 (exact->inexact angle)
+                 (and (memq 'horizontal flip) #t)
+                 (and (memq 'vertical flip) #t)))))
+
+  (define (render-present! r)
+    ((foreign-lambda void "SDL_RenderPresent" c-pointer) (live-renderer 'render-present! r)))
+
+  ;; The render target's pixels, RGBA order, row by row:
+  ;; (values u8vector width height), 4 bytes a pixel.
+  (define (render-read-pixels r)
+    (let ((p (live-renderer 'render-read-pixels r)))
+      (receive (w h) (renderer-output-size r)
+        (let ((buf (make-u8vector (* w h 4) 0)))
+          (check-status 'render-read-pixels "SDL_RenderReadPixels"
+                        ((foreign-lambda* int ((c-pointer r) (u8vector buf) (int pitch))
+                           "C_return(SDL_RenderReadPixels((SDL_Renderer*)r, NULL,
+                                                           SDL_PIXELFORMAT_RGBA32, buf, pitch));")
+                         p buf (* w 4)))
+          (values buf w h)))))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Textures
+
+  ;; A texture from an image file (PNG and whatever else SDL_image reads).
+  (define (img-load-texture! r path)
+    (unless (string? path) (error 'img-load-texture! "the path must be a string" path))
+    (let* ((rp (live-renderer 'img-load-texture! r))
+           (p ((foreign-lambda c-pointer "IMG_LoadTexture" c-pointer c-string) rp path)))
+      (unless p (sdl-error 'img-load-texture! "IMG_LoadTexture"
+                           (sprintf "cannot load ~s" path)))
+      (let-location ((w int 0) (h int 0))
+        ((foreign-lambda int "SDL_QueryTexture" c-pointer c-pointer c-pointer
+                         (c-pointer int) (c-pointer int))
+         p #f #f (location w) (location h))
+        (set-finalizer! (%make-texture p r w h) destroy-texture!))))
+
+  ;; (values width height)
+  (define (texture-size t)
+    (live-texture 'texture-size t)
+    (values (texture-width t) (texture-height t)))
+
+  ;; alpha: 0..255, multiplied into every pixel the texture draws.
+  (define (texture-alpha-mod-set! t alpha)
+    (check-status 'texture-alpha-mod-set! "SDL_SetTextureAlphaMod"
+                  ((foreign-lambda int "SDL_SetTextureAlphaMod" c-pointer unsigned-byte)
+                   (live-texture 'texture-alpha-mod-set! t)
+                   (byte 'texture-alpha-mod-set! alpha))))
+
+  (define (texture-alpha-mod t)
+    (let ((p (live-texture 'texture-alpha-mod t)))
+      (let-location ((a unsigned-byte 0))
+        (check-status 'texture-alpha-mod "SDL_GetTextureAlphaMod"
+                      ((foreign-lambda int "SDL_GetTextureAlphaMod" c-pointer (c-pointer unsigned-byte))
+                       p (location a)))
+        a)))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Surfaces
+
+  ;; A w x h surface of 32-bit RGBA pixels (SDL_PIXELFORMAT_RGBA32),
+  ;; initially transparent black.
+  (define (create-rgba-surface! w h)
+    (let ((p ((foreign-lambda* c-pointer ((int w) (int h))
+                "C_return(SDL_CreateRGBSurfaceWithFormat(0, w, h, 32, SDL_PIXELFORMAT_RGBA32));")
+              w h)))
+      (unless p (sdl-error 'create-rgba-surface! "SDL_CreateRGBSurfaceWithFormat"))
+      (set-finalizer! (%make-surface p #f) free-surface!)))
+
+  (define (surface-size s)
+    (let ((p (live-surface 'surface-size s)))
+      (values ((foreign-lambda* int ((c-pointer s)) "C_return(((SDL_Surface*)s)->w);") p)
+              ((foreign-lambda* int ((c-pointer s)) "C_return(((SDL_Surface*)s)->h);") p))))
+
+  (define (img-save-png! s path)
+    (unless (string? path) (error 'img-save-png! "the path must be a string" path))
+    (let ((r (surface-renderer s)))
+      ;; a software renderer batches its drawing: flush it into the surface
+      (when (and r (renderer-alive? r))
+        ((foreign-lambda int "SDL_RenderFlush" c-pointer) (renderer-ptr r))))
+    (let ((status ((foreign-lambda int "IMG_SavePNG" c-pointer c-string)
+                   (live-surface 'img-save-png! s) path)))
+      (when (< status 0)
+        (sdl-error 'img-save-png! "IMG_SavePNG" (sprintf "cannot save ~s" path)))
+      (void)))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Keys
+
+  (define key-table
+    (append
+     (let loop ((c (char->integer #\a)) (out '()))
+       (if (> c (char->integer #\z))
+           (reverse out)
+           (loop (+ c 1) (cons (cons (string->symbol (string (integer->char c))) c) out))))
+     (let loop ((d 0) (out '()))
+       (if (> d 9)
+           (reverse out)
+           (loop (+ d 1) (cons (cons (string->symbol (sprintf "n-~a" d)) (+ 48 d)) out))))
+     `((left . ,(foreign-value "SDLK_LEFT" int))
+       (right . ,(foreign-value "SDLK_RIGHT" int))
+       (up . ,(foreign-value "SDLK_UP" int))
+       (down . ,(foreign-value "SDLK_DOWN" int))
+       (return . ,(foreign-value "SDLK_RETURN" int))
+       (escape . ,(foreign-value "SDLK_ESCAPE" int))
+       (space . ,(foreign-value "SDLK_SPACE" int))
+       (tab . ,(foreign-value "SDLK_TAB" int))
+       (backspace . ,(foreign-value "SDLK_BACKSPACE" int))
+       (delete . ,(foreign-value "SDLK_DELETE" int))
+       (insert . ,(foreign-value "SDLK_INSERT" int))
+       (home . ,(foreign-value "SDLK_HOME" int))
+       (end . ,(foreign-value "SDLK_END" int))
+       (page-up . ,(foreign-value "SDLK_PAGEUP" int))
+       (page-down . ,(foreign-value "SDLK_PAGEDOWN" int))
+       (lshift . ,(foreign-value "SDLK_LSHIFT" int))
+       (rshift . ,(foreign-value "SDLK_RSHIFT" int))
+       (lctrl . ,(foreign-value "SDLK_LCTRL" int))
+       (rctrl . ,(foreign-value "SDLK_RCTRL" int))
+       (lalt . ,(foreign-value "SDLK_LALT" int))
+       (ralt . ,(foreign-value "SDLK_RALT" int))
+       (lgui . ,(foreign-value "SDLK_LGUI" int))
+       (rgui . ,(foreign-value "SDLK_RGUI" int))
+       (minus . ,(foreign-value "SDLK_MINUS" int))
+       (equals . ,(foreign-value "SDLK_EQUALS" int))
+       (comma . ,(foreign-value "SDLK_COMMA" int))
+       (period . ,(foreign-value "SDLK_PERIOD" int))
+       (slash . ,(foreign-value "SDLK_SLASH" int))
+       (semicolon . ,(foreign-value "SDLK_SEMICOLON" int))
+       (f1 . ,(foreign-value "SDLK_F1" int)) (f2 . ,(foreign-value "SDLK_F2" int))
+       (f3 . ,(foreign-value "SDLK_F3" int)) (f4 . ,(foreign-value "SDLK_F4" int))
+       (f5 . ,(foreign-value "SDLK_F5" int)) (f6 . ,(foreign-value "SDLK_F6" int))
+       (f7 . ,(foreign-value "SDLK_F7" int)) (f8 . ,(foreign-value "SDLK_F8" int))
+       (f9 . ,(foreign-value "SDLK_F9" int)) (f10 . ,(foreign-value "SDLK_F10" int))
+       (f11 . ,(foreign-value "SDLK_F11" int)) (f12 . ,(foreign-value "SDLK_F12" int)))))
+
+  (define (key-symbols) (map car key-table))
+
+  (define (keycode->key code)
+    (let loop ((t key-table))
+      (cond ((null? t) 'unknown)
+            ((= (cdar t) code) (caar t))
+            (else (loop (cdr t))))))
+
+  (define (key->keycode key)
+    (let ((p (assq key key-table)))
+      (unless p (error 'key->keycode "unknown key symbol" key))
+      (cdr p)))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Events
+
+  (define ev-key-sym
+    (foreign-lambda* int () "C_return(downstroke_event.key.keysym.sym);"))
+  (define ev-key-repeat
+    (foreign-lambda* bool () "C_return(downstroke_event.key.repeat != 0);"))
+
+  (define type-quit (foreign-value "SDL_QUIT" int))
+  (define type-key-down (foreign-value "SDL_KEYDOWN" int))
+  (define type-key-up (foreign-value "SDL_KEYUP" int))
+
+  ;; The next event as a list (see the head of this file), or #f.
+  (define (poll-event!)
+    (unless initialized? (error 'poll-event! "SDL is not initialized (init!)"))
+    (let ((type ((foreign-lambda int "downstroke_poll"))))
+      (cond ((< type 0) #f)
+            ((= type type-quit) (list 'quit))
+            ((= type type-key-down) (list 'key-down (keycode->key (ev-key-sym)) (ev-key-repeat)))
+            ((= type type-key-up) (list 'key-up (keycode->key (ev-key-sym)) (ev-key-repeat)))
+            (else (list 'other type)))))
+
+  ;; Every pending event, oldest first.
+  (define (poll-events!)
+    (let loop ((out '()))
+      (let ((e (poll-event!)))
+        (if e (loop (cons e out)) (reverse out)))))
+
+  ;; (push-key-event! 'key-down 'left #!key repeat?)
+  (define (push-key-event! type key #!key (repeat? #f))
+    (unless initialized? (error 'push-key-event! "SDL is not initialized (init!)"))
+    (let ((down (case type
+                  ((key-down) 1)
+                  ((key-up) 0)
+                  (else (error 'push-key-event! "type must be key-down or key-up" type)))))
+      (when (< ((foreign-lambda int "downstroke_push_key" int int int)
+                down (key->keycode key) (if repeat? 1 0))
+               1)
+        (sdl-error 'push-key-event! "SDL_PushEvent"))
+      (void)))
+
+  (define (push-quit-event!)
+    (unless initialized? (error 'push-quit-event! "SDL is not initialized (init!)"))
+    (when (< ((foreign-lambda int "downstroke_push_quit")) 1)
+      (sdl-error 'push-quit-event! "SDL_PushEvent"))
+    (void)))
