@@ -10,13 +10,17 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util srfi-197 entity tween animation xml decode tilemap scene broadphase physics engine sdl2 renderer
+MODULES := test util srfi-197 entity tween animation xml decode tilemap scene broadphase physics sdl2 renderer input sound text assets prefabs engine
 
 # C libraries a module binds through the FFI (passed to the linker by csc).
 LINK_xml    := -L -lexpat
 LINK_decode := -L -lz -L -lzstd
 # SDL2's flags as Debian's pkg-config gives them (the .egg cannot run pkg-config).
-LINK_sdl2   := -C -I/usr/include/SDL2 -C -D_REENTRANT -L -lSDL2 -L -lSDL2_image
+SDL_CFLAGS  := -C -I/usr/include/SDL2 -C -D_REENTRANT
+LINK_sdl2   := $(SDL_CFLAGS) -L -lSDL2 -L -lSDL2_image
+LINK_input  := $(SDL_CFLAGS) -L -lSDL2
+LINK_sound  := $(SDL_CFLAGS) -L -lSDL2 -L -lSDL2_mixer
+LINK_text   := $(SDL_CFLAGS) -L -lSDL2 -L -lSDL2_ttf
 
 LIBS := $(patsubst %,$(BUILD)/downstroke.%.so,$(MODULES))
 
@@ -54,8 +58,13 @@ $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.tilemap.so
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
-$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
-$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
+$(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so
+$(BUILD)/downstroke.sound.so:     $(BUILD)/downstroke.sdl2.so
+$(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.sdl2.so
+$(BUILD)/downstroke.assets.so:    $(BUILD)/downstroke.util.so
+$(BUILD)/downstroke.prefabs.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so
+$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.text.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
+$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
 
 # Tiled's own example maps, from Debian's tiled package (cached in tests/data).
 examples:

@@ -15,16 +15,21 @@
    game-renderer game-renderer-set! game-window game-window-set!
    game-frame game-asset game-asset-set!
    engine-pipeline default-engine-update run-engine-update!
-   game-start! game-step!)
+   game-start! game-step!
+   game-run! game-recording game-surface game-load-scene! game-textures
+   game-add-state! game-state-set! game-current-state game-states)
 
-  (import scheme (chicken base) (chicken format)
+  (import scheme (chicken base) (chicken format) (chicken process-context)
           (downstroke entity) (downstroke scene) (downstroke physics)
-          (downstroke tween) (downstroke animation) (downstroke srfi-197))
+          (downstroke tween) (downstroke animation) (downstroke srfi-197)
+          (downstroke sdl2) (downstroke renderer) (downstroke input)
+          (downstroke tilemap))
 
   (define-record-type game
     (%make-game title width height scale frame-delay input-config
                 preload create update render debug? headless?
-                scene input renderer window frame assets)
+                scene input renderer window frame assets
+                surface states current-state recording textures)
     game?
     (title game-title)
     (width game-width)
@@ -43,7 +48,12 @@
     (renderer game-renderer game-renderer-set!)
     (window game-window game-window-set!)
     (frame game-frame game-frame-set!)
-    (assets game-assets game-assets-set!))
+    (assets game-assets game-assets-set!)
+    (surface game-surface game-surface-set!)
+    (states game-states game-states-set!)
+    (current-state game-current-state game-current-state-set!)
+    (recording game-recording game-recording-set!)
+    (textures game-textures game-textures-set!))
 
   (define (check what ok? value)
     (unless (ok? value)
@@ -71,7 +81,7 @@
                 (check "update:" hook? update)
                 (check "render:" hook? render)
                 debug? headless?
-                #f #f #f #f 0 '()))
+                #f #f #f #f 0 '() #f '() #f #f '()))
 
   ;; (game-asset game key [default]): a missing key without a default is an
   ;; error naming the key.
@@ -140,10 +150,280 @@
   ;; follow. dt defaults to the game's frame delay (ms).
   (define (game-step! game #!optional (dt (game-frame-delay game)))
     (run-engine-update! game dt)
-    (let ((update (game-update-hook game)))
+    (let ((update (active-update-hook game)))
       (when update (update game dt)))
     (let ((scene (game-scene game)))
       (when scene
         (game-scene-set! game (scene-follow-camera scene (game-width game)
                                                    (game-height game)))))
-    (game-frame-set! game (+ (game-frame game) 1))))
+    (game-frame-set! game (+ (game-frame game) 1)))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Named game states (title, play, pause ...).
+  ;;;
+  ;;; (game-add-state! game name #!key update render enter) registers a
+  ;;; state (adding a name again replaces it). (game-state-set! game name)
+  ;;; makes it the active state and calls its enter: hook as (enter game);
+  ;;; (game-state-set! game #f) goes back to the game's own hooks. While a
+  ;;; state is active its update: (game dt) and render: (game) hooks are
+  ;;; used INSTEAD of the game's update: and render: (a state without one
+  ;;; runs none); the scene's engine update and the camera follow still run.
+
+  (define-record-type game-state
+    (make-game-state update render enter)
+    game-state?
+    (update game-state-update)
+    (render game-state-render)
+    (enter game-state-enter))
+
+  (define (game-add-state! game name #!key (update #f) (render #f) (enter #f))
+    (for-each (lambda (what h)
+                (unless (hook? h)
+                  (error 'game-add-state! (sprintf "~a must be a procedure or #f" what) h)))
+              '("update:" "render:" "enter:") (list update render enter))
+    (game-states-set! game (cons (cons name (make-game-state update render enter))
+                                 (let loop ((ss (game-states game)))
+                                   (cond ((null? ss) '())
+                                         ((equal? (caar ss) name) (cdr ss))
+                                         (else (cons (car ss) (loop (cdr ss))))))))
+    (void))
+
+  (define (game-state-set! game name)
+    (if (not name)
+        (game-current-state-set! game #f)
+        (let ((p (assoc name (game-states game))))
+          (unless p (error 'game-state-set! (sprintf "no game state named ~s" name)))
+          (game-current-state-set! game name)
+          (let ((enter (game-state-enter (cdr p))))
+            (when enter (enter game)))))
+    (void))
+
+  (define (active-state game)
+    (let ((name (game-current-state game)))
+      (and name (let ((p (assoc name (game-states game)))) (and p (cdr p))))))
+
+  (define (active-update-hook game)
+    (let ((st (active-state game)))
+      (if st (game-state-update st) (game-update-hook game))))
+
+  (define (active-render-hook game)
+    (let ((st (active-state game)))
+      (if st (game-state-render st) (game-render-hook game))))
+
+  ;;; ------------------------------------------------------------------
+  ;;; The game shell.
+  ;;;
+  ;;; (game-run! game #!key frames input-script record)
+  ;;;
+  ;;; Opens SDL (unless it is already initialised, in which case it is
+  ;;; left initialised at the end), then a window of (width * scale) x
+  ;;; (height * scale) titled game-title with an accelerated renderer
+  ;;; (software fallback), or, when headless? is set or SDL_VIDEODRIVER is
+  ;;; "dummy", no window: a software renderer drawing into an RGBA surface
+  ;;; of that size (game-surface). The renderer's logical size is
+  ;;; width x height. Then preload: and create: run, and the loop:
+  ;;;
+  ;;; Fixed timestep. Real time (SDL ticks) accumulates; each loop runs as
+  ;;; many logical frames of frame-delay ms as are due, at most 4; time due
+  ;;; beyond that is dropped (so a slow frame never starts a spiral), and
+  ;;; when none is due the loop sleeps until the next one. One logical
+  ;;; frame: the events polled with input-poll-events! (only the first frame of a catch-up batch
+  ;;; sees them) -> the input state (game-input), or the script's state ->
+  ;;; the scene's engine update -> update: (game dt) -> camera follow; then,
+  ;;; once per loop that ran a frame: render-scene! (or a black clear when
+  ;;; there is no scene), render: (game), present. dt is always frame-delay.
+  ;;; A headless run with frames: N never sleeps: it runs exactly N logical
+  ;;; frames back to back, each one rendered.
+  ;;;
+  ;;; frames: N stops after N frames (else the loop runs until quit).
+  ;;; The loop ends, before that frame's update, on a (quit) event (window
+  ;;; closed) or when the `quit` action is pressed or held.
+  ;;; input-script: a script (see (downstroke input)) drives the actions
+  ;;; instead of the keyboard; the (quit) event still ends the run.
+  ;;; record: #t records the per-frame actions; game-run! then returns the
+  ;;; recording as a script (also kept in game-recording), and replaying it
+  ;;; with input-script: gives the same frames.
+  ;;;
+  ;;; A recording ends with the quit action on the frame the run quit (by
+  ;;; the action or the (quit) event), so its replay stops there too.
+  ;;;
+  ;;; At the end, however the loop ends (an error in a hook included: the
+  ;;; error reaches game-run!'s caller unchanged, and the cleanup runs as
+  ;;; it unwinds, through dynamic-wind), the renderer, the window or surface
+  ;;; and SDL itself (when game-run! initialised it) are freed exactly once,
+  ;;; and game-renderer, game-window and game-surface are reset to #f.
+  ;;; game-input keeps the last input state. Returns the recording, or the
+  ;;; number of frames run when not recording.
+  ;;;
+  ;;; Game controllers: the game-controller subsystem is started, each
+  ;;; controller SDL reports is opened (and closed at the end), and its
+  ;;; buttons and axes drive actions through the input config.
+
+  (define max-catch-up 4)
+
+  (define (headless-run? game)
+    (or (game-headless? game)
+        (equal? (get-environment-variable "SDL_VIDEODRIVER") "dummy")))
+
+  ;; One logical frame. Returns #t when the game should quit instead.
+  (define (run-frame! game config script events rec-box)
+    (let* ((prev (game-input game))
+           (from-events (input-update (if script (make-input-state) prev) config events))
+           (state (if script (script (game-frame game) prev) from-events)))
+      (game-input-set! game state)
+      (if (or (input-quit? from-events)
+              (input-pressed? state 'quit)
+              (input-held? state 'quit))
+          (begin
+            ;; recorded as the quit action, so the replay stops here too
+            (when rec-box
+              (set-car! rec-box (input-record (car rec-box) (game-frame game)
+                                              (input-from-held prev (cons 'quit (input-held-actions state))))))
+            #t)
+          (begin
+            (when rec-box
+              (set-car! rec-box (input-record (car rec-box) (game-frame game) state)))
+            (game-step! game)
+            #f))))
+
+  (define (render-frame! game renderer)
+    (let ((scene (game-scene game)))
+      (if scene
+          (render-scene! renderer scene textures: (game-textures game)
+                         debug?: (game-debug? game))
+          (begin (render-draw-color-set! renderer 0 0 0)
+                 (render-clear! renderer)))
+      (let ((hook (active-render-hook game)))
+        (when hook (hook game)))
+      (render-present! renderer)))
+
+  ;; Returns the number of frames run.
+  (define (run-loop! game renderer config script frames fast? rec-box)
+    (let ((fd (game-frame-delay game)))
+      (let loop ((done 0) (acc 0) (last (get-ticks)))
+        (cond ((and frames (>= done frames)) done)
+              (fast?
+               (if (run-frame! game config script (input-poll-events!) rec-box)
+                   done
+                   (begin (render-frame! game renderer)
+                          (loop (+ done 1) 0 last))))
+              (else
+               (let* ((now (get-ticks))
+                      (acc (+ acc (- now last)))
+                      (due (quotient acc fd))
+                      (n (min due max-catch-up (if frames (- frames done) due)))
+                      (acc (if (> due max-catch-up) (remainder acc fd) (- acc (* n fd)))))
+                 (if (= n 0)
+                     (begin (delay! (max 1 (- fd acc)))
+                            (loop done acc now))
+                     (let batch ((i 0) (events (input-poll-events!)))
+                       (cond ((= i n)
+                              (render-frame! game renderer)
+                              (loop (+ done n) acc now))
+                             ((run-frame! game config script events rec-box) (+ done i))
+                             (else (batch (+ i 1) '())))))))))))
+
+  (define (game-run! game #!key (frames #f) (input-script #f) (record #f))
+    (unless (or (not frames) (and (exact-integer? frames) (>= frames 0)))
+      (error 'game-run! "frames: must be a non-negative integer or #f" frames))
+    (let* ((config (or (game-input-config game) *default-input-config*))
+           (script (and input-script (scripted-input input-script)))
+           (headless (headless-run? game))
+           (owns-sdl (not (sdl-initialized?)))
+           (w (* (game-width game) (game-scale game)))
+           (h (* (game-height game) (game-scale game)))
+           (rec-box (and record (list (make-recording))))
+           (window #f) (surface #f) (renderer #f)
+           (ran 0))
+      (dynamic-wind
+       void
+       (lambda ()
+         (when owns-sdl (init! '(video events timer)))
+         (input-open-controllers!)
+         (if headless
+             (begin (set! surface (create-rgba-surface! w h))
+                    (set! renderer (create-software-renderer! surface)))
+             (begin (set! window (create-window! (game-title game) 'centered 'centered w h))
+                    (set! renderer (create-renderer! window))))
+         (render-set-logical-size! renderer (game-width game) (game-height game))
+         (game-window-set! game window)
+         (game-surface-set! game surface)
+         (game-renderer-set! game renderer)
+         (game-input-set! game (make-input-state))
+         (game-start! game)
+         (set! ran (run-loop! game renderer config script frames
+                              (and frames headless) rec-box)))
+       (lambda ()
+         (when rec-box (game-recording-set! game (recording->script (car rec-box))))
+         (free-textures! game)
+         (input-close-controllers!)
+         (game-renderer-set! game #f)
+         (game-window-set! game #f)
+         (game-surface-set! game #f)
+         (let ((r renderer) (wi window) (s surface))
+           (set! renderer #f) (set! window #f) (set! surface #f)
+           (when r (destroy-renderer! r))
+           (when wi (destroy-window! wi))
+           (when s (free-surface! s)))
+         (when (and owns-sdl (sdl-initialized?)) (quit!))))
+      (if record (game-recording game) ran)))
+
+  ;;; ------------------------------------------------------------------
+  ;;; (game-load-scene! game tmx-path #!key entities background camera
+  ;;;                   camera-target engine-update)
+  ;;;
+  ;;; Loads the TMX map (load-tilemap), a texture with the game's renderer
+  ;;; for every tileset image (and every tile image of image-collection
+  ;;; tilesets), and makes a scene of them the game's scene, which it also
+  ;;; returns. The scene's tileset-texture is the first tileset's texture
+  ;;; (entity sprites); every texture is in game-textures, which the frame
+  ;;; loop passes to render-scene!. It needs the renderer, so it is called
+  ;;; from a hook during game-run! (create: is the usual place). Loading
+  ;;; another scene destroys the previous scene's textures (each is freed
+  ;;; once); the rest are freed when game-run! ends. Map objects are not
+  ;;; turned into entities here: pass entities:.
+
+  (define (free-textures! game)
+    (for-each (lambda (p) (destroy-texture! (cdr p))) (game-textures game))
+    (game-textures-set! game '()))
+
+  (define (tilemap-image-paths tm)
+    (let loop ((tss (tilemap-tilesets tm)) (out '()))
+      (if (null? tss)
+          (reverse out)
+          (let* ((ts (car tss))
+                 (img (tileset-image ts))
+                 (paths (if img
+                            (list (image-source img))
+                            (let tl ((tiles (tileset-tiles ts)))
+                              (cond ((null? tiles) '())
+                                    ((and (tile-image (car tiles)) (image-source (tile-image (car tiles))))
+                                     (cons (image-source (tile-image (car tiles))) (tl (cdr tiles))))
+                                    (else (tl (cdr tiles))))))))
+            (loop (cdr tss)
+                  (let add ((ps paths) (out out))
+                    (cond ((null? ps) out)
+                          ((or (not (car ps)) (member (car ps) out)) (add (cdr ps) out))
+                          (else (add (cdr ps) (cons (car ps) out))))))))))
+
+  (define (game-load-scene! game tmx-path #!key (entities '()) (background #f)
+                            (camera (make-camera)) (camera-target 'camera-target)
+                            (engine-update #f))
+    (let ((r (game-renderer game)))
+      (unless (and r (renderer-alive? r))
+        (error 'game-load-scene!
+               (sprintf "no renderer: call it from a hook during game-run! (loading ~s)" tmx-path)))
+      (let* ((tm (load-tilemap tmx-path))
+             (textures (map (lambda (path) (cons path (img-load-texture! r path)))
+                            (tilemap-image-paths tm)))
+             (first-ts (and (pair? (tilemap-tilesets tm)) (car (tilemap-tilesets tm))))
+             (first-img (and first-ts (tileset-image first-ts)))
+             (first-tex (and first-img (let ((p (assoc (image-source first-img) textures)))
+                                         (and p (cdr p)))))
+             (scene (make-scene entities: entities tilemap: tm tileset-texture: first-tex
+                                background: background camera: camera
+                                camera-target: camera-target engine-update: engine-update)))
+        (free-textures! game)
+        (game-textures-set! game textures)
+        (game-scene-set! game scene)
+        scene))))

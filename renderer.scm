@@ -1,6 +1,6 @@
 ;;; (downstroke renderer): drawing a scene with an SDL renderer.
 ;;;
-;;;   (render-scene! renderer scene #!key view-width view-height textures)
+;;;   (render-scene! renderer scene #!key view-width view-height textures debug?)
 ;;;
 ;;; draws, in this order:
 ;;;   1. the whole target cleared to the scene's background, a list
@@ -25,7 +25,8 @@
 ;;;      cannot be drawn (no tileset or texture) falls through to #:color.
 ;;;      #:tile-id numbers tiles as gids of the scene's tileset: local tile
 ;;;      id + the tileset's first gid (1 for a map's first tileset), the same
-;;;      numbers the map's cells use.
+;;;      numbers the map's cells use;
+;;;   4. with `debug?: #t` (default #f), the debug overlay (below).
 ;;;
 ;;; The rounding rule: a world position x (an exact integer, a rational or
 ;;; a flonum) is drawn at the whole screen pixel
@@ -46,17 +47,41 @@
 ;;; used for the scene's tileset when `textures` gives nothing. A tile
 ;;; layer needing a tileset image with no texture is an error naming the path.
 ;;;
+;;; The debug overlay. (render-debug-overlay! renderer scene #!key
+;;; view-width view-height velocity-scale), which render-scene! calls last
+;;; when given `debug?: #t`, draws for every entity with a numeric #:width
+;;; and #:height, through the scene's camera and with the rounding rule:
+;;;   1. with a tilemap, the outline of every tile cell its AABB covers, in
+;;;      *debug-cell-color* (blue): columns floor(x/T) to ceil((x+w)/T) - 1,
+;;;      rows likewise with the tile height (physics' entity-cell-span, the
+;;;      cells the tile collision step looks at); only cells in the view;
+;;;   2. the outline of its hitbox, #:x #:y #:width #:height, in
+;;;      *debug-hitbox-color* (green);
+;;;   3. a line from the centre of the hitbox to the centre plus
+;;;      velocity-scale * (#:vx, #:vy), in *debug-velocity-color* (yellow).
+;;;      The default scale, *debug-velocity-scale*, is 4: the line ends where
+;;;      the centre will be in 4 frames at this velocity (velocities are
+;;;      px/frame). A body at rest draws no line.
+;;; A body at risk of tunnelling (physics' tunnel-risk?: discrete collision
+;;; mode and a speed of at least its size plus a tile on an axis) has its
+;;; hitbox and velocity line drawn in *debug-warning-color* (red) instead.
+;;; Outlines are one pixel wide, drawn inside the rectangle (SDL's draw-rect).
+;;;
 ;;; Not drawn (yet): parallax factors, layer tint, object, image and group
 ;;; layers' own content (their tile children are drawn), hexagonal and
 ;;; isometric orientations (cells are laid out orthogonally).
 
 (module (downstroke renderer)
   (render-scene! render-tile-layers! render-entities! render-entity!
-   screen-coordinate tileset-source-rect)
+   screen-coordinate tileset-source-rect
+   render-debug-overlay! render-draw-line!
+   *debug-hitbox-color* *debug-cell-color* *debug-velocity-color*
+   *debug-warning-color* *debug-velocity-scale*)
 
   (import scheme (chicken base) (chicken format) srfi-4
           (downstroke sdl2) (downstroke entity) (downstroke scene)
-          (downstroke tilemap))
+          (downstroke tilemap)
+          (only (downstroke physics) entity-cell-span tunnel-risk?))
 
   ;; The rounding rule (see above): world coordinate -> whole screen pixel.
   (define (screen-coordinate x camera)
@@ -227,7 +252,114 @@
   ;;; ------------------------------------------------------------------
   ;;; Scenes
 
-  (define (render-scene! r scene #!key (view-width #f) (view-height #f) (textures #f))
+;;; ------------------------------------------------------------------
+  ;;; Debug overlay
+
+  (define *debug-hitbox-color* '(0 255 0 255))
+  (define *debug-cell-color* '(0 128 255 255))
+  (define *debug-velocity-color* '(255 255 0 255))
+  (define *debug-warning-color* '(255 0 0 255))
+  (define *debug-velocity-scale* 4)
+
+  ;; A one-pixel line from (x0, y0) to (x1, y1), screen pixels, both ends
+  ;; included, clipped to [0, vw) x [0, vh) first (Liang-Barsky), so a huge
+  ;; velocity costs no more than the view's diagonal. Drawn in the current
+  ;; draw colour, a pixel at a time (debug drawing: short lines).
+  (define (render-draw-line! r x0 y0 x1 y1 vw vh)
+    (let ((dx (- x1 x0)) (dy (- y1 y0)))
+      (let clip ((ps (list (- dx) dx (- dy) dy))
+                 (qs (list x0 (- vw 1 x0) y0 (- vh 1 y0)))
+                 (t0 0) (t1 1))
+        (cond ((> t0 t1) (void))        ; outside the view
+              ((null? ps)
+               (let* ((ax (round-int (+ x0 (* t0 dx)))) (ay (round-int (+ y0 (* t0 dy))))
+                      (bx (round-int (+ x0 (* t1 dx)))) (by (round-int (+ y0 (* t1 dy))))
+                      (n (max (abs (- bx ax)) (abs (- by ay)))))
+                 (do ((i 0 (+ i 1))) ((> i n))
+                   (let ((x (if (zero? n) ax (round-int (+ ax (/ (* i (- bx ax)) n)))))
+                         (y (if (zero? n) ay (round-int (+ ay (/ (* i (- by ay)) n))))))
+                     (render-fill-rect! r (make-rect x y 1 1))))))
+              (else
+               (let ((p (car ps)) (q (car qs)))
+                 (cond ((zero? p)
+                        (if (< q 0) (void) (clip (cdr ps) (cdr qs) t0 t1)))
+                       ((< p 0) (clip (cdr ps) (cdr qs) (max t0 (/ q p)) t1))
+                       (else (clip (cdr ps) (cdr qs) t0 (min t1 (/ q p)))))))))))
+
+  (define (round-int x) (let ((v (round x))) (if (exact? v) v (inexact->exact v))))
+
+  (define (overlay-color! r c) (apply render-draw-color-set! r c))
+
+  ;; The outline of the screen rect from world [x, x+w) x [y, y+h).
+  (define (outline! r x y w h cx cy)
+    (let ((x0 (screen-coordinate x cx)) (y0 (screen-coordinate y cy))
+          (x1 (screen-coordinate (+ x w) cx)) (y1 (screen-coordinate (+ y h) cy)))
+      (when (and (> x1 x0) (> y1 y0))
+        (render-draw-rect! r (make-rect x0 y0 (- x1 x0) (- y1 y0))))))
+
+  (define (finite-real? v) (and (real? v) (finite? v)))
+
+  ;; Entities the overlay draws: finite numbers for #:width and #:height,
+  ;; and for #:x and #:y when present (a broken body is physics' to report).
+  (define (sized? e)
+    (and (finite-real? (entity-ref e #:width #f)) (finite-real? (entity-ref e #:height #f))
+         (finite-real? (entity-ref e #:x 0)) (finite-real? (entity-ref e #:y 0))))
+
+  (define (render-debug-overlay! r scene #!key (view-width #f) (view-height #f)
+                                 (velocity-scale *debug-velocity-scale*))
+    (let* ((camera (scene-camera scene))
+           (cx (if camera (camera-x camera) 0))
+           (cy (if camera (camera-y camera) 0))
+           (tm (scene-tilemap scene))
+           (entities (filter sized? (scene-entities scene))))
+      (receive (vw vh) (view-size r view-width view-height)
+        (render-draw-blend-mode-set! r 'none)
+        ;; 1. covered tile cells, under the hitboxes
+        (when tm
+          (let ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)))
+            (overlay-color! r *debug-cell-color*)
+            (for-each
+             (lambda (e)
+               (receive (c0 c1) (entity-cell-span (entity-ref e #:x 0) (entity-ref e #:width) tw)
+                 (receive (r0 r1) (entity-cell-span (entity-ref e #:y 0) (entity-ref e #:height) th)
+                   ;; only the cells the view touches
+                   (let ((c0 (max c0 (floor-int (/ cx tw))))
+                         (c1 (min c1 (- (ceiling-int (/ (+ cx vw) tw)) 1)))
+                         (r0 (max r0 (floor-int (/ cy th))))
+                         (r1 (min r1 (- (ceiling-int (/ (+ cy vh) th)) 1))))
+                     (do ((row r0 (+ row 1))) ((> row r1))
+                       (do ((col c0 (+ col 1))) ((> col c1))
+                         (outline! r (* col tw) (* row th) tw th cx cy)))))))
+             entities)))
+        ;; 2. hitboxes and 3. velocity lines
+        (for-each
+         (lambda (e)
+           (let ((x (entity-ref e #:x 0)) (y (entity-ref e #:y 0))
+                 (w (entity-ref e #:width)) (h (entity-ref e #:height))
+                 (vx (entity-ref e #:vx 0)) (vy (entity-ref e #:vy 0)))
+             (let* ((moving? (and (finite-real? vx) (finite-real? vy)
+                                  (not (and (zero? vx) (zero? vy)))))
+                    (risk? (and moving? (tunnel-risk? scene e))))
+               (overlay-color! r (if risk? *debug-warning-color* *debug-hitbox-color*))
+               (outline! r x y w h cx cy)
+               (when moving?
+                 (overlay-color! r (if risk? *debug-warning-color* *debug-velocity-color*))
+                 (let ((mx (+ x (/ w 2))) (my (+ y (/ h 2))))
+                   (render-draw-line! r
+                                      (screen-coordinate mx cx) (screen-coordinate my cy)
+                                      (screen-coordinate (+ mx (* velocity-scale vx)) cx)
+                                      (screen-coordinate (+ my (* velocity-scale vy)) cy)
+                                      vw vh))))))
+         entities)
+        (void))))
+
+  (define (filter keep? l)
+    (cond ((null? l) '())
+          ((keep? (car l)) (cons (car l) (filter keep? (cdr l))))
+          (else (filter keep? (cdr l)))))
+
+  (define (render-scene! r scene #!key (view-width #f) (view-height #f) (textures #f)
+                         (debug? #f))
     (let* ((camera (scene-camera scene))
            (cx (if camera (camera-x camera) 0))
            (cy (if camera (camera-y camera) 0))
@@ -252,4 +384,6 @@
                                 (and sprite-tileset (tileset-image sprite-tileset)
                                      (lookup-texture textures
                                                      (image-source (tileset-image sprite-tileset))))))
+          (when debug?
+            (render-debug-overlay! r scene view-width: vw view-height: vh))
           (void))))))

@@ -46,6 +46,8 @@
    ;; renderers
    create-renderer! create-software-renderer! destroy-renderer! renderer?
    renderer-alive? renderer-software? renderer-output-size
+   ;; for sibling FFI modules (text, ...): the native SDL_Renderer*
+   renderer-pointer
    render-set-logical-size! render-logical-size
    render-draw-color-set! render-draw-blend-mode-set!
    render-clear! render-fill-rect! render-draw-rect! render-copy!
@@ -239,6 +241,10 @@ EOF
     (unless (and (renderer? r) (renderer-alive? r))
       (error who (sprintf "~a: not a live renderer" who) r))
     (renderer-ptr r))
+
+  ;; The SDL_Renderer* of a live renderer (an error naming `who` otherwise),
+  ;; for other modules that call SDL libraries on it, such as SDL_ttf.
+  (define (renderer-pointer who r) (live-renderer who r))
 
   (define (live-texture who t)
     (unless (and (texture? t) (texture-alive? t))

@@ -1,0 +1,278 @@
+;;; (downstroke engine) game-run!: the headless shell on real SDL (dummy
+;;; video driver, software renderer on a surface): frame counts, hook
+;;; order, scripted and recorded input, cleanup after errors, quitting,
+;;; game states.
+
+(import scheme (chicken base) (chicken string) (chicken file) srfi-4
+        (downstroke test) (downstroke sdl2) (downstroke entity) (downstroke scene)
+        (downstroke input) (downstroke engine))
+
+;; Earlier suites may leave SDL initialised, and game-run! leaves an SDL it
+;; did not open initialised; start from a shut-down SDL so each run below
+;; opens and closes its own.
+(when (sdl-initialized?) (quit!))
+
+(define (run-pixel r x y)
+  (receive (px w h) (render-read-pixels r)
+    (let ((i (* 4 (+ x (* y w)))))
+      (list (u8vector-ref px i) (u8vector-ref px (+ i 1))
+            (u8vector-ref px (+ i 2)) (u8vector-ref px (+ i 3))))))
+
+;; A scene with one player square; engine update 'none, so only the hooks move it.
+(define (run-player-scene)
+  (make-sprite-scene
+   entities: (list (plist->entity (list #:type 'player #:x 10 #:y 10 #:width 4 #:height 4
+                                        #:color '(0 255 0))))
+   background: '(255 0 0) engine-update: 'none camera-target: #f))
+
+(define (run-player g) (car (scene-entities (game-scene g))))
+
+;; update: moves the player one pixel per frame along the held directions.
+(define (run-move-player g dt)
+  (let* ((in (game-input g))
+         (dx (+ (if (input-held? in 'right) 1 0) (if (input-held? in 'left) -1 0)))
+         (dy (+ (if (input-held? in 'down) 1 0) (if (input-held? in 'up) -1 0)))
+         (jump (if (input-pressed? in 'a) 100 0))
+         (p (run-player g)))
+    (game-scene-set! g (update-scene (game-scene g)
+                                     entities: (list (entity-set (entity-set p #:x (+ (entity-ref p #:x) dx))
+                                                                 #:y (+ (entity-ref p #:y) dy (- jump))))))))
+
+(define (run-game . args)
+  (apply make-game headless?: #t width: 32 height: 24 args))
+
+(test-group "game-run!: frames"
+  (let* ((calls 0)
+         (g (run-game update: (lambda (g dt) (set! calls (+ calls 1)))))
+         (ran (game-run! g frames: 10)))
+    (test "update: runs exactly 10 times" 10 calls)
+    (test "game-frame advances to 10" 10 (game-frame g))
+    (test "the number of frames run" 10 ran)
+    (test-assert "SDL is shut down after the run" (not (sdl-initialized?)))
+    (test "the renderer is reset" #f (game-renderer g))
+    (test-assert "the last input state is kept" (input-state? (game-input g))))
+  (let* ((seen #f)
+         (g (run-game scale: 2 title: "t"
+                      create: (lambda (g) (set! seen (list (renderer? (game-renderer g))
+                                                          (game-window g)
+                                                          (receive (w h) (surface-size (game-surface g)) (list w h))
+                                                          (receive (w h) (render-logical-size (game-renderer g))
+                                                            (list w h))))))))
+    (game-run! g frames: 0)
+    (test "headless: software renderer on a width*scale surface, no window, logical size"
+          '(#t #f (64 48) (32 24)) seen))
+  (let* ((dts '())
+         (g (run-game frame-delay: 20 update: (lambda (g dt) (set! dts (cons dt dts))))))
+    (game-run! g frames: 3)
+    (test "dt is the frame delay" '(20 20 20) dts)))
+
+(test-group "game-run!: hook order and drawing"
+  (let* ((order '())
+         (pixels '())
+         (g (run-game
+             preload: (lambda (g) (set! order (cons 'preload order)))
+             create: (lambda (g) (set! order (cons 'create order))
+                       (game-scene-set! g (run-player-scene)))
+             update: (lambda (g dt) (set! order (cons 'update order)))
+             render: (lambda (g)
+                       (set! order (cons 'render order))
+                       (let ((r (game-renderer g)))
+                         ;; the scene is already drawn: background and the square
+                         (set! pixels (list (run-pixel r 0 0) (run-pixel r 11 11)))
+                         (render-draw-color-set! r 0 0 255)
+                         (render-fill-rect! r (make-rect 0 0 2 2))
+                         (set! pixels (append pixels (list (run-pixel r 0 0)))))))))
+    (game-run! g frames: 2)
+    (test "preload, create, then update before render each frame"
+          '(preload create update render update render) (reverse order))
+    (test "render: runs after the scene draw and draws on top"
+          '((255 0 0 255) (0 255 0 255) (0 0 255 255)) pixels)))
+
+(test-group "game-run!: scripted input"
+  (let ((g (run-game create: (lambda (g) (game-scene-set! g (run-player-scene)))
+                     update: run-move-player)))
+    (game-run! g frames: 10 input-script: '((2 right) (5 right down) (7) (8 (tap a))))
+    ;; right on frames 2..6 (5), down on 5..6 (2), a tap on frame 8 (-100)
+    (test "the player moved as scripted" '(15 -88)
+          (list (entity-ref (run-player g) #:x) (entity-ref (run-player g) #:y)))))
+
+(test-group "game-run!: record and replay"
+  (let* ((pushes '((1 key-down right) (3 key-down s) (4 key-up right) (5 key-down j)
+                   (5 key-up j) (7 key-up s) (8 key-down left)))
+         (pusher (lambda (g dt)
+                   (for-each (lambda (p)
+                               (when (= (car p) (game-frame g)) (push-key-event! (cadr p) (caddr p))))
+                             pushes)))
+         (g1 (run-game create: (lambda (g) (game-scene-set! g (run-player-scene)))
+                       update: (lambda (g dt) (run-move-player g dt) (pusher g dt))))
+         (rec (game-run! g1 frames: 12 record: #t))
+         (g2 (run-game create: (lambda (g) (game-scene-set! g (run-player-scene)))
+                       update: run-move-player)))
+    (test "the recording is a script of the changes"
+          '((2 right) (4 down right) (5 down) (6 down (tap a)) (8) (9 left)) rec)
+    (test "kept on the game too" rec (game-recording g1))
+    (game-run! g2 frames: 12 input-script: rec)
+    (test-assert "the live run moved" (not (equal? (run-player g1) (car (scene-entities (run-player-scene))))))
+    (test "the replay ends in an equal scene" (scene-entities (game-scene g1))
+          (scene-entities (game-scene g2)))
+    (test "at the same frame" (game-frame g1) (game-frame g2)))
+  ;; a run ended by escape: the replay quits at the same frame
+  (let* ((mk (lambda (update)
+               (run-game create: (lambda (g) (game-scene-set! g (run-player-scene)))
+                         update: update)))
+         (g1 (mk (lambda (g dt)
+                   (run-move-player g dt)
+                   (case (game-frame g)
+                     ((0) (push-key-event! 'key-down 'd))
+                     ((4) (push-key-event! 'key-down 'escape))))))
+         (rec (game-run! g1 frames: 50 record: #t))
+         (g2 (mk run-move-player)))
+    (test "the recording ends with the quit" '((1 right) (5 right quit)) rec)
+    (test "the replay quits at the same frame" (game-frame g1) (game-run! g2 frames: 50 input-script: rec))
+    (test "to the same scene" (scene-entities (game-scene g1)) (scene-entities (game-scene g2)))))
+
+(test-group "game-run!: errors free every resource"
+  (let* ((r #f) (s #f)
+         (g (run-game create: (lambda (g) (set! r (game-renderer g)) (set! s (game-surface g)))
+                      update: (lambda (g dt) (when (= (game-frame g) 3) (error 'run-test "boom in update"))))))
+    (test-error "the hook's error reaches the caller"
+                (lambda (exn) (substring-index "boom" (error-text exn)))
+                (game-run! g frames: 10))
+    (test "the frames before the error ran" 3 (game-frame g))
+    (test-assert "the renderer is destroyed" (not (renderer-alive? r)))
+    (test-assert "the surface is freed" (not (surface-alive? s)))
+    (test-assert "SDL is shut down" (not (sdl-initialized?)))
+    (test "game-renderer is reset" #f (game-renderer g))
+    (test-error "an error in render: too"
+                (game-run! (run-game render: (lambda (g) (error 'run-test "boom in render")))
+                           frames: 5))
+    (test-assert "SDL is shut down again" (not (sdl-initialized?)))
+    (let ((g2 (run-game)))
+      (test "SDL is usable by the next run" 5 (game-run! g2 frames: 5))))
+  (test-error "create: raising still cleans up"
+              (game-run! (run-game create: (lambda (g) (error 'run-test "boom in create"))) frames: 1))
+  (test-assert "... SDL shut down" (not (sdl-initialized?)))
+  (test-error "frames: must be a count" (game-run! (run-game) frames: -1)))
+
+(test-group "game-run!: quitting"
+  (let ((g (run-game)))
+    (test "the quit action in a script ends the loop" 4
+          (game-run! g frames: 100 input-script: '((4 quit))))
+    (test "no update for the quitting frame" 4 (game-frame g)))
+  (let ((g (run-game update: (lambda (g dt) (when (= (game-frame g) 2) (push-key-event! 'key-down 'escape))))))
+    (test "escape ends the loop" 3 (game-run! g frames: 100)))
+  (let ((g (run-game update: (lambda (g dt) (when (= (game-frame g) 1) (push-quit-event!))))))
+    (test "a (quit) event (window closed) ends the loop" 2 (game-run! g frames: 100)))
+  (let ((g (run-game update: (lambda (g dt) (when (= (game-frame g) 1) (push-quit-event!))))))
+    (test "a (quit) event ends a scripted run too" 2
+          (game-run! g frames: 100 input-script: '((0 right)))))
+  (let ((g (run-game update: (lambda (g dt) (when (= (game-frame g) 1) (push-quit-event!))))))
+    (test "a run closed by a (quit) event records it as the quit action" '((2 quit))
+          (game-run! g frames: 100 record: #t))))
+
+(test-group "game-run!: the timed loop"
+  ;; no frames: -> real time, fixed steps of frame-delay ms, until quit
+  (let* ((t0 #f) (t1 #f)
+         (g (run-game frame-delay: 10
+                      create: (lambda (g) (set! t0 (get-ticks)))
+                      update: (lambda (g dt) (set! t1 (get-ticks))))))
+    (test "runs frames until the scripted quit" 5 (game-run! g input-script: '((5 quit))))
+    (test-assert "at the fixed rate (about 10 ms a frame, not as fast as possible)"
+                 (>= (- t1 t0) 30)))
+  (let ()
+    ;; a 200 ms frame is 40 frames late; at most 4 catch-up frames follow
+    (let* ((after '())
+           (g (run-game frame-delay: 5
+                        update: (lambda (g dt)
+                                  (set! after (cons (get-ticks) after))
+                                  (when (= (game-frame g) 1) (delay! 200))))))
+      (game-run! g input-script: '((12 quit)))
+      (let ((ts (reverse after)))
+        (test-assert "a slow frame does not start a spiral of catch-up frames"
+                     ;; frames 2..5 catch up at once; frame 6 onwards waits for real time again
+                     (>= (- (list-ref ts 11) (list-ref ts 2)) 20))))))
+
+(test-group "game-run!: named game states"
+  (let* ((log '())
+         (g (run-game update: (lambda (g dt) (set! log (cons 'game log)))
+                      render: (lambda (g) (set! log (cons 'game-render log))))))
+    (game-add-state! g 'title
+                     update: (lambda (g dt)
+                               (set! log (cons 'title log))
+                               (when (= (game-frame g) 1) (game-state-set! g 'play)))
+                     enter: (lambda (g) (set! log (cons 'enter-title log))))
+    (game-add-state! g 'play
+                     update: (lambda (g dt) (set! log (cons 'play log)))
+                     render: (lambda (g) (set! log (cons 'play-render log)))
+                     enter: (lambda (g) (set! log (cons 'enter-play log))))
+    (game-state-set! g 'title)
+    (test "the current state" 'title (game-current-state g))
+    (game-run! g frames: 3)
+    (test "a state's hooks replace the game's; enter: runs on the switch"
+          '(enter-title title title enter-play play-render play play-render) (reverse log))
+    (game-state-set! g #f)
+    (set! log '())
+    (game-step! g)
+    (test "#f goes back to the game's hooks" '(game) log)
+    (test-error "an unknown state" (game-state-set! g 'nope))))
+
+(test-group "game-run!: game-load-scene!"
+  (let* ((dir (create-temporary-directory))
+         (path (lambda (n) (string-append dir "/" n)))
+         ;; a 2-tile tileset: gid 1 red, gid 2 blue (8x8 each)
+         (write-files!
+          (lambda (g)
+            (let* ((s (create-rgba-surface! 16 8))
+                   (r (create-software-renderer! s)))
+              (render-draw-color-set! r 255 0 0) (render-fill-rect! r (make-rect 0 0 8 8))
+              (render-draw-color-set! r 0 0 255) (render-fill-rect! r (make-rect 8 0 8 8))
+              (img-save-png! s (path "t.png"))
+              (free-surface! s))
+            (with-output-to-file (path "m.tmx")
+              (lambda ()
+                (display "<?xml version=\"1.0\" encoding=\"UTF-8\"?>
+<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"4\" height=\"3\" tilewidth=\"8\" tileheight=\"8\" infinite=\"0\">
+ <tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"2\" columns=\"2\">
+  <image source=\"t.png\" width=\"16\" height=\"8\"/>
+ </tileset>
+ <layer id=\"1\" name=\"g\" width=\"4\" height=\"3\">
+  <data encoding=\"csv\">
+0,0,0,0,
+0,1,0,0,
+0,0,0,2
+  </data>
+ </layer>
+</map>
+")))))
+         (pixels '())
+         (first-textures #f)
+         (after-reload #f)
+         (g (run-game
+             preload: write-files!
+             create: (lambda (g)
+                       (game-load-scene! g (path "m.tmx") background: '(0 255 0) camera-target: #f
+                                         entities: (list (plist->entity (list #:x 0 #:y 0 #:tile-id 2))))
+                       (set! first-textures (game-textures g)))
+             update: (lambda (g dt)
+                       (when (= (game-frame g) 1)
+                         (game-load-scene! g (path "m.tmx") camera-target: #f)
+                         (set! after-reload (list (texture-alive? (cdar first-textures))
+                                                  (texture-alive? (cdar (game-textures g)))))))
+             render: (lambda (g)
+                       (let ((r (game-renderer g)))
+                         (set! pixels (cons (map (lambda (xy) (run-pixel r (car xy) (cadr xy)))
+                                                 '((3 3) (9 9) (25 17) (20 3)))
+                                            pixels)))))))
+    (game-run! g frames: 3)
+    (test "the map's tiles and the sprite are drawn from the loaded textures"
+          '((0 0 255 255) (255 0 0 255) (0 0 255 255) (0 255 0 255))
+          (car (reverse pixels)))
+    (test "after reloading: no sprite, default background"
+          '((0 0 0 255) (255 0 0 255) (0 0 255 255) (0 0 0 255))
+          (car pixels))
+    (test "reloading destroyed the first scene's textures, the new ones live" '(#f #t) after-reload)
+    (test-assert "and they are dead after the run" (not (texture-alive? (cdar first-textures))))
+    (test "the textures are released at the end" '() (game-textures g))
+    (test-error "game-load-scene! needs a running game"
+                (lambda (exn) (substring-index "renderer" (error-text exn)))
+                (game-load-scene! (run-game) (path "m.tmx")))))
