@@ -28,8 +28,8 @@ LIBS := $(patsubst %,$(BUILD)/downstroke.%.so,$(MODULES))
 CHICKEN_REPO = $(shell chicken-install -repository 2>/dev/null)
 export CHICKEN_REPOSITORY_PATH = $(abspath $(BUILD)):$(CHICKEN_REPO)
 
-export SDL_VIDEODRIVER ?= dummy
-export SDL_AUDIODRIVER ?= dummy
+# Tests and benchmarks run headless; demos open a window when there is a display.
+HEADLESS := SDL_VIDEODRIVER=dummy SDL_AUDIODRIVER=dummy
 
 .PHONY: all deps libs examples test demo bench clean
 all: libs
@@ -71,7 +71,7 @@ examples:
 	@sh tools/fetch-tiled-examples.sh
 
 test: libs examples
-	cd tests && DOWNSTROKE_MAKE=1 csi -q -s run.scm
+	cd tests && $(HEADLESS) DOWNSTROKE_MAKE=1 csi -q -s run.scm
 
 # The platformer demo arrives with the game shell; until then this runs the
 # getting-started scene headless and says so.
@@ -85,9 +85,10 @@ $(BUILD)/bench-scenes: bench/scenes.scm $(LIBS)
 	cd $(BUILD) && $(CSC) $(CSC_FLAGS) ../bench/scenes.scm -o bench-scenes
 
 bench: libs $(BUILD)/bench-scenes
-	$(BUILD)/bench-scenes --runs $(RUNS) --csv bench/results.csv $(BENCH_ARGS)
+	$(HEADLESS) $(BUILD)/bench-scenes --runs $(RUNS) --csv bench/results.csv $(BENCH_ARGS)
 	sh tools/plot-bench.sh bench/results.csv docs/images
-	csi -q -s bench/map-load.scm
+	$(HEADLESS) csi -q -s bench/map-load.scm
+	$(HEADLESS) csi -q -s bench/render.scm
 
 clean:
 	rm -rf $(BUILD)

@@ -20,6 +20,7 @@
    game-add-state! game-state-set! game-current-state game-states)
 
   (import scheme (chicken base) (chicken format) (chicken process-context)
+          (chicken condition) (chicken file) (chicken pathname)
           (downstroke entity) (downstroke scene) (downstroke physics)
           (downstroke tween) (downstroke animation) (downstroke srfi-197)
           (downstroke sdl2) (downstroke renderer) (downstroke input)
@@ -213,14 +214,16 @@
   ;;; ------------------------------------------------------------------
   ;;; The game shell.
   ;;;
-  ;;; (game-run! game #!key frames input-script record)
+  ;;; (game-run! game #!key frames input-script record headless? screenshot)
   ;;;
   ;;; Opens SDL (unless it is already initialised, in which case it is
   ;;; left initialised at the end), then a window of (width * scale) x
   ;;; (height * scale) titled game-title with an accelerated renderer
-  ;;; (software fallback), or, when headless? is set or SDL_VIDEODRIVER is
-  ;;; "dummy", no window: a software renderer drawing into an RGBA surface
-  ;;; of that size (game-surface). The renderer's logical size is
+  ;;; (software fallback), or, when the run is headless, no window: a
+  ;;; software renderer drawing into an RGBA surface of that size
+  ;;; (game-surface). The run is headless when game-run!'s headless?: says
+  ;;; so (#t or #f, overriding everything else for this run); without it,
+  ;;; when the game's headless? is set or SDL_VIDEODRIVER is "dummy". The renderer's logical size is
   ;;; width x height. Then preload: and create: run, and the loop:
   ;;;
   ;;; Fixed timestep. Real time (SDL ticks) accumulates; each loop runs as
@@ -247,6 +250,18 @@
   ;;; A recording ends with the quit action on the frame the run quit (by
   ;;; the action or the (quit) event), so its replay stops there too.
   ;;;
+  ;;; screenshot: "path.png" saves the last drawn frame as a PNG, at the
+  ;;; output size (width * scale x height * scale), when the loop has ended
+  ;;; normally, just before the shutdown (a run that ends in an error saves
+  ;;; nothing). Headless, that is the software renderer's surface;
+  ;;; windowed, the renderer's pixels read back (before the present, on the
+  ;;; frame known to be the last, i.e. every drawn frame when frames: is not
+  ;;; given, as the back buffer is undefined after a present) copied into a
+  ;;; new RGBA surface. A run that drew no frame saves the cleared target.
+  ;;; Missing directories of the path are created; an error creating them
+  ;;; or saving is an error of game-run! naming the path (the cleanup still
+  ;;; runs).
+  ;;;
   ;;; At the end, however the loop ends (an error in a hook included: the
   ;;; error reaches game-run!'s caller unchanged, and the cleanup runs as
   ;;; it unwinds, through dynamic-wind), the renderer, the window or surface
@@ -264,6 +279,27 @@
   (define (headless-run? game)
     (or (game-headless? game)
         (equal? (get-environment-variable "SDL_VIDEODRIVER") "dummy")))
+
+  ;; The screenshot's pixels, read before a present: (u8vector w h).
+  (define (capture-pixels renderer)
+    (receive (buf w h) (render-read-pixels renderer) (list buf w h)))
+
+  (define (save-screenshot! path renderer surface captured)
+    (handle-exceptions exn
+        (error 'game-run!
+               (sprintf "screenshot: cannot save ~s: ~a" path
+                        ((condition-property-accessor 'exn 'message "unknown error") exn)))
+      (let ((dir (pathname-directory path)))
+        (when (and dir (not (directory-exists? dir)))
+          (create-directory dir #t)))
+      (if surface
+          (img-save-png! surface path)
+          (let* ((c (or captured (capture-pixels renderer)))
+                 (s (rgba-pixels->surface! (car c) (cadr c) (caddr c))))
+            (dynamic-wind
+             void
+             (lambda () (img-save-png! s path))
+             (lambda () (free-surface! s)))))))
 
   ;; One logical frame. Returns #t when the game should quit instead.
   (define (run-frame! game config script events rec-box)
@@ -286,7 +322,9 @@
             (game-step! game)
             #f))))
 
-  (define (render-frame! game renderer)
+  ;; shot-box: #f, or a one-element list that receives the frame's pixels
+  ;; (read before the present) for a windowed screenshot.
+  (define (render-frame! game renderer #!optional (shot-box #f))
     (let ((scene (game-scene game)))
       (if scene
           (render-scene! renderer scene textures: (game-textures game)
@@ -295,10 +333,11 @@
                  (render-clear! renderer)))
       (let ((hook (active-render-hook game)))
         (when hook (hook game)))
+      (when shot-box (set-car! shot-box (capture-pixels renderer)))
       (render-present! renderer)))
 
   ;; Returns the number of frames run.
-  (define (run-loop! game renderer config script frames fast? rec-box)
+  (define (run-loop! game renderer config script frames fast? rec-box shot-box)
     (let ((fd (game-frame-delay game)))
       (let loop ((done 0) (acc 0) (last (get-ticks)))
         (cond ((and frames (>= done frames)) done)
@@ -318,17 +357,26 @@
                             (loop done acc now))
                      (let batch ((i 0) (events (input-poll-events!)))
                        (cond ((= i n)
-                              (render-frame! game renderer)
+                              (render-frame! game renderer
+                                             (and shot-box
+                                                  (or (not frames) (>= (+ done n) frames))
+                                                  shot-box))
                               (loop (+ done n) acc now))
                              ((run-frame! game config script events rec-box) (+ done i))
                              (else (batch (+ i 1) '())))))))))))
 
-  (define (game-run! game #!key (frames #f) (input-script #f) (record #f))
+  (define unset (list 'unset))
+
+  (define (game-run! game #!key (frames #f) (input-script #f) (record #f)
+                     (headless? unset) (screenshot #f))
     (unless (or (not frames) (and (exact-integer? frames) (>= frames 0)))
       (error 'game-run! "frames: must be a non-negative integer or #f" frames))
+    (unless (or (not screenshot) (and (string? screenshot) (> (string-length screenshot) 0)))
+      (error 'game-run! "screenshot: must be a file path (a string) or #f" screenshot))
     (let* ((config (or (game-input-config game) *default-input-config*))
            (script (and input-script (scripted-input input-script)))
-           (headless (headless-run? game))
+           (headless (if (eq? headless? unset) (headless-run? game) (and headless? #t)))
+           (shot-box (and screenshot (not headless) (list #f)))
            (owns-sdl (not (sdl-initialized?)))
            (w (* (game-width game) (game-scale game)))
            (h (* (game-height game) (game-scale game)))
@@ -352,7 +400,9 @@
          (game-input-set! game (make-input-state))
          (game-start! game)
          (set! ran (run-loop! game renderer config script frames
-                              (and frames headless) rec-box)))
+                              (and frames headless) rec-box shot-box))
+         (when screenshot
+           (save-screenshot! screenshot renderer surface (and shot-box (car shot-box)))))
        (lambda ()
          (when rec-box (game-recording-set! game (recording->script (car rec-box))))
          (free-textures! game)
