@@ -31,7 +31,7 @@ export CHICKEN_REPOSITORY_PATH = $(abspath $(BUILD)):$(CHICKEN_REPO)
 # Tests and benchmarks run headless; demos open a window when there is a display.
 HEADLESS := SDL_VIDEODRIVER=dummy SDL_AUDIODRIVER=dummy
 
-.PHONY: all deps libs examples test demo bench clean
+.PHONY: all deps libs examples assets test demo bench clean
 all: libs
 
 deps:
@@ -70,13 +70,16 @@ $(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downst
 examples:
 	@sh tools/fetch-tiled-examples.sh
 
-test: libs examples
+test: libs examples assets
 	cd tests && $(HEADLESS) DOWNSTROKE_MAKE=1 csi -q -s run.scm
 
-# The platformer demo arrives with the game shell; until then this runs the
-# getting-started scene headless and says so.
-demo: libs
-	csi -q -s demo/getting-started.scm
+# The demos' art and sounds are generated, not stored: demo/assets/.
+assets: libs
+	@$(HEADLESS) csi -q -s tools/make-assets.scm
+
+# Opens a window when there is a display; otherwise runs headless and says so.
+demo: libs assets
+	bin/demo-platformer
 
 # The scenes of bench-spec.md, compiled like a game would be.
 # RUNS=3 runs per scene instance (medians); BENCH_ARGS="S1 --quick" narrows.

@@ -1,21 +1,11 @@
-;;; Getting started: a square moved by the arrows.
-;;;
-;;; The window, the keyboard and the drawing arrive with the game shell; until
-;;; then this demo runs headless: a script stands in for the arrow keys, and
-;;; the square's position is printed instead of drawn.
+;;; Getting started: a square moved by the arrow keys.
 (import scheme (chicken base) (chicken format)
-        (downstroke entity) (downstroke scene) (downstroke engine))
+        (downstroke entity) (downstroke scene) (downstroke input) (downstroke engine))
+(include-relative "common.scm")
 
-;; Which arrows are "held" on each frame: right for 30 frames, then down.
-(define (arrows frame) (if (< frame 30) '(right) '(down)))
-
-(define (axis held minus plus)
-  (cond ((memq minus held) -2) ((memq plus held) 2) (else 0)))
-
-;; Velocity is intent: set it every frame, the pipeline moves the square.
-(define (move square held)
-  (entity-set (entity-set square #:vx (axis held 'left 'right))
-              #:vy (axis held 'up 'down)))
+;; -3, 0 or 3 px/frame along one axis, from two opposite arrows.
+(define (axis input minus plus)
+  (cond ((input-held? input minus) -3) ((input-held? input plus) 3) (else 0)))
 
 (define game
   (make-game
@@ -26,15 +16,15 @@
                                     entities: (list (list #:type 'square #:x 150 #:y 110
                                                           #:width 20 #:height 20
                                                           #:color '(240 200 60))))))
+   ;; Velocity is intent: set it from the arrows, the pipeline moves the square.
    update: (lambda (game dt)
-             (let ((scene (game-scene game)))
+             (let ((input (game-input game)))
                (game-scene-set! game (scene-map-entities
-                                      scene
-                                      (lambda (s e) (move e (arrows (game-frame game))))))))))
+                                      (game-scene game)
+                                      (lambda (scene square)
+                                        (entity-set (entity-set square #:vx (axis input 'left 'right))
+                                                    #:vy (axis input 'up 'down)))))))))
 
-(game-start! game)
-(do ((f 0 (+ f 1))) ((= f 60))
-  (game-step! game))
+(demo-run! game)
 (let ((square (car (scene-entities (game-scene game)))))
-  (printf "getting-started (headless, no window yet): after ~a frames the square is at (~a, ~a)~%"
-          (game-frame game) (entity-ref square #:x) (entity-ref square #:y)))
+  (printf "getting-started: square at ~a ~a~%" (entity-ref square #:x) (entity-ref square #:y)))
