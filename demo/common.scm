@@ -30,6 +30,8 @@
                        (else #f)))
          (script-file (demo-option "--script"))
          (script (and script-file (with-input-from-file script-file read))))
+    ;; no window wanted: do not let SDL probe for a display server
+    (when headless (set-environment-variable! "SDL_VIDEODRIVER" "dummy"))
     (when (and headless (not (demo-flag? "--headless")))
       (printf "~a: no display, running ~a frames headless~%" (game-title game) frames))
     (game-run! game frames: frames input-script: script
