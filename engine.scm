@@ -23,6 +23,7 @@
           (chicken condition) (chicken file) (chicken pathname)
           (downstroke entity) (downstroke scene) (downstroke physics)
           (downstroke tween) (downstroke animation) (downstroke srfi-197)
+          (downstroke assets)
           (downstroke sdl2) (downstroke renderer) (downstroke input)
           (downstroke tilemap))
 
@@ -49,7 +50,7 @@
     (renderer game-renderer game-renderer-set!)
     (window game-window game-window-set!)
     (frame game-frame game-frame-set!)
-    (assets game-assets game-assets-set!)
+    (assets game-assets)
     (surface game-surface game-surface-set!)
     (states game-states game-states-set!)
     (current-state game-current-state game-current-state-set!)
@@ -82,22 +83,16 @@
                 (check "update:" hook? update)
                 (check "render:" hook? render)
                 debug? headless?
-                #f #f #f #f 0 '() #f '() #f #f '()))
+                #f #f #f #f 0 (make-asset-registry) #f '() #f #f '()))
 
-  ;; (game-asset game key [default]): a missing key without a default is an
+  ;; The game's assets live in an asset registry: (game-asset game key
+  ;; [default]) is asset-ref on it, so a missing key without a default is an
   ;; error naming the key.
-  (define (game-asset game key #!optional (default (void)))
-    (let ((p (assoc key (game-assets game))))
-      (cond (p (cdr p))
-            ((not (eq? default (void))) default)
-            (else (error 'game-asset (sprintf "no asset named ~s" key))))))
+  (define (game-asset game key . default)
+    (apply asset-ref (game-assets game) key default))
 
   (define (game-asset-set! game key value)
-    (game-assets-set! game (cons (cons key value)
-                                 (let loop ((as (game-assets game)))
-                                   (cond ((null? as) '())
-                                         ((equal? (caar as) key) (cdr as))
-                                         (else (cons (car as) (loop (cdr as)))))))))
+    (asset-set! (game-assets game) key value))
 
   ;; Steps 1-7 of the contract for one entity. None of them reads another
   ;; entity, so running them back to back per entity gives exactly what

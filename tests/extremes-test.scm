@@ -164,6 +164,9 @@
                 (if (and hi (> f 100)) (map max hi ys) ys)
                 (if (every-x-is? s 40.0) xs-moved (+ xs-moved 1))))
         (let ((jitter (apply max (map - hi lo))))
+          ;; the figures docs/performance.org quotes
+          (print "extremes: stack jitter " jitter " px, bottom box "
+                 (- (+ (car hi) 16) 224) " px into the floor")
           (test "no box moves sideways" 0 xs-moved)
           (test-assert "after settling, every box stays within 1 px" (< jitter 1))
           (test-assert "the bottom box sinks less than half its height into the floor"
@@ -202,6 +205,7 @@
     (entity-ref (ex-first (ex-run (make-scene entities: (list (ex-ent #:x 0 #:vx vx))) frames)) #:x))
   (test "1/10 px/frame for 10,000 frames is exactly 1000 px" 1000 (slide 1/10 10000))
   (let ((drift (- (slide 0.1 10000) 1000)))
+    (print "extremes: 0.1 px/frame as a flonum, 10,000 frames: drift " drift " px")
     (test-assert "0.1 as a flonum drifts" (not (zero? drift)))
     (test-assert "by less than a millionth of a pixel" (< (abs drift) 1e-6))))
 
