@@ -38,6 +38,7 @@
         (chicken gc) (chicken format) srfi-4
         (downstroke test) (downstroke sdl2) (downstroke entity) (downstroke scene)
         (downstroke engine))
+(include-relative "pixels.scm")
 
 (when (sdl-initialized?) (quit!))
 
@@ -51,15 +52,6 @@
                 ((substring=? "VmRSS:" line)
                  (string->number (car (string-split (substring line 6) " \t"))))
                 (else (loop))))))))
-
-;; A w x h PNG of one colour.
-(define (mem-write-png! path w h r g b)
-  (let* ((s (create-rgba-surface! w h))
-         (rd (create-software-renderer! s)))
-    (render-draw-color-set! rd r g b)
-    (render-fill-rect! rd #f)
-    (img-save-png! s path)
-    (free-surface! s)))
 
 (define (mem-write-tmx! path)
   (with-output-to-file path
@@ -98,9 +90,9 @@
          (g (make-game
              headless?: #t width: 64 height: 48
              preload: (lambda (g)
-                        (mem-write-png! (path "a.png") 64 64 255 0 0)
-                        (mem-write-png! (path "b.png") 64 64 0 0 255)
-                        (mem-write-png! (path "tiles.png") 16 16 0 255 0)
+                        (write-solid-png! (path "a.png") 64 64 255 0 0)
+                        (write-solid-png! (path "b.png") 64 64 0 0 255)
+                        (write-solid-png! (path "tiles.png") 16 16 0 255 0)
                         (mem-write-tmx! (path "m.tmx")))
              create: (lambda (g)
                        (game-load-scene! g (path "m.tmx") background: '(0 0 0) camera-target: #f))

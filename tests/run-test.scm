@@ -6,17 +6,12 @@
 (import scheme (chicken base) (chicken string) (chicken file) srfi-4
         (downstroke test) (downstroke sdl2) (downstroke entity) (downstroke scene)
         (downstroke input) (downstroke engine))
+(include-relative "pixels.scm")
 
 ;; Earlier suites may leave SDL initialised, and game-run! leaves an SDL it
 ;; did not open initialised; start from a shut-down SDL so each run below
 ;; opens and closes its own.
 (when (sdl-initialized?) (quit!))
-
-(define (run-pixel r x y)
-  (receive (px w h) (render-read-pixels r)
-    (let ((i (* 4 (+ x (* y w)))))
-      (list (u8vector-ref px i) (u8vector-ref px (+ i 1))
-            (u8vector-ref px (+ i 2)) (u8vector-ref px (+ i 3))))))
 
 ;; A scene with one player square; engine update 'none, so only the hooks move it.
 (define (run-player-scene)
@@ -78,10 +73,10 @@
                        (set! order (cons 'render order))
                        (let ((r (game-renderer g)))
                          ;; the scene is already drawn: background and the square
-                         (set! pixels (list (run-pixel r 0 0) (run-pixel r 11 11)))
+                         (set! pixels (list (renderer-pixel r 0 0) (renderer-pixel r 11 11)))
                          (render-draw-color-set! r 0 0 255)
                          (render-fill-rect! r (make-rect 0 0 2 2))
-                         (set! pixels (append pixels (list (run-pixel r 0 0)))))))))
+                         (set! pixels (append pixels (list (renderer-pixel r 0 0)))))))))
     (game-run! g frames: 2)
     (test "preload, create, then update before render each frame"
           '(preload create update render update render) (reverse order))
@@ -260,7 +255,7 @@
                                                   (texture-alive? (cdar (game-textures g)))))))
              render: (lambda (g)
                        (let ((r (game-renderer g)))
-                         (set! pixels (cons (map (lambda (xy) (run-pixel r (car xy) (cadr xy)))
+                         (set! pixels (cons (map (lambda (xy) (renderer-pixel r (car xy) (cadr xy)))
                                                  '((3 3) (9 9) (25 17) (20 3)))
                                             pixels)))))))
     (game-run! g frames: 3)
