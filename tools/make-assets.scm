@@ -10,8 +10,16 @@
 ;;; tiles.png, 8 columns of 16 x 16 tiles (gid = column + 1 in the levels):
 ;;;   1 ground  2 brick  3 grass top  4 platform  5 spikes  6 coin
 ;;;   7 background block  8 stone
-;;; sprites.png, 16 x 16 frames:
-;;;   0 player idle  1 walk A  2 walk B  3 jump  4 enemy  5 bullet
+;;; sprites.png, 16 x 16 frames, 6 to a row (gid = index + 9 in the levels,
+;;; where sprites.tsx is the second tileset):
+;;;   row 0:  0 player idle  1 walk A  2 walk B  3 jump  4 enemy  5 bullet
+;;;   row 1:  6 player blink  7 enemy squashed  8 enemy stretched
+;;;           9 bird wings up  10 wings level  11 wings down
+;;;   row 2: 12 coin  13 coin turning  14 coin edge-on
+;;;          15 16 17 torch flame (three flickers)
+;;; font.png, a sprite font: printable ASCII (32..126) in 6 x 8 cells, 16 to
+;;; a row; white 5 x 7 glyphs with a dark shadow one pixel down and right.
+;;; Sounds: jump.wav, coin.wav, boom.wav (effects); music.wav, a 4 s loop.
 
 (import scheme (chicken base) (chicken format) (chicken file)
         (chicken bitwise) (chicken io) (downstroke sdl2))
@@ -102,17 +110,59 @@
                   draw-spikes! draw-coin! draw-background-block! draw-stone!)
             '(0 1 2 3 4 5 6 7)))
 
+;; Sprite helper: frame `i` of sprites.png (6 frames to a row).
+(define sprite-columns 6)
+(define (sprite-rect! r i color x y w h)
+  (rect! r color (+ (* (modulo i sprite-columns) T) x) (+ (* (quotient i sprite-columns) T) y) w h))
+
 ;; The player: a 16 x 16 frame, body 12 px wide (x 2..13), facing right.
 ;; legs: a list of (x height) for the two legs.
 (define (draw-player! r c legs-y left-leg right-leg)
   (let ((skin '(250 200 160)) (shirt '(40 120 230)) (hair '(90 50 20))
         (pants '(40 40 80)) (eye '(20 20 30)))
-    (tile-rect! r c hair 4 0 8 3)
-    (tile-rect! r c skin 4 3 8 5)
-    (tile-rect! r c eye 9 4 2 2)
-    (tile-rect! r c shirt 2 8 12 4)
-    (tile-rect! r c pants (car left-leg) legs-y 3 (cadr left-leg))
-    (tile-rect! r c pants (car right-leg) legs-y 3 (cadr right-leg))))
+    (sprite-rect! r c hair 4 0 8 3)
+    (sprite-rect! r c skin 4 3 8 5)
+    (sprite-rect! r c eye 9 4 2 2)
+    (sprite-rect! r c shirt 2 8 12 4)
+    (sprite-rect! r c pants (car left-leg) legs-y 3 (cadr left-leg))
+    (sprite-rect! r c pants (car right-leg) legs-y 3 (cadr right-leg))))
+
+;; The enemy blob, body from (x, y) of size w x h, eyes `eye-y` down.
+(define (draw-blob! r i x y w h eye-y)
+  (let ((purple '(150 50 170)))
+    (sprite-rect! r i purple x y w h)
+    (sprite-rect! r i purple (+ x 2) (- y 2) (- w 4) 2)
+    (sprite-rect! r i '(255 255 255) 4 eye-y 3 3)
+    (sprite-rect! r i '(255 255 255) 9 eye-y 3 3)
+    (sprite-rect! r i '(0 0 0) 5 (+ eye-y 1) 1 2)
+    (sprite-rect! r i '(0 0 0) 10 (+ eye-y 1) 1 2)))
+
+;; A red bird facing right; wing: (x y w h) of its wing.
+(define (draw-bird! r i wing)
+  (sprite-rect! r i '(220 70 50) 4 6 8 5)            ; body
+  (sprite-rect! r i '(220 70 50) 10 4 4 4)           ; head
+  (sprite-rect! r i '(250 220 190) 6 9 5 2)          ; belly
+  (sprite-rect! r i '(160 40 30) 2 6 2 3)            ; tail
+  (sprite-rect! r i '(255 200 40) 14 6 2 1)          ; beak
+  (sprite-rect! r i '(20 20 30) 12 5 1 1)            ; eye
+  (apply sprite-rect! r i '(160 40 30) wing))
+
+;; A coin seen from the front (w 10), turning (w 6) or edge-on (w 2).
+(define (draw-coin-frame! r i w)
+  (let ((x (quotient (- T w) 2)))
+    (sprite-rect! r i '(200 140 20) x 3 w 10)
+    (sprite-rect! r i '(200 140 20) (+ x 1) 2 (max 1 (- w 2)) 12)
+    (when (> w 2)
+      (sprite-rect! r i '(252 210 60) (+ x 1) 3 (- w 2) 10)
+      (sprite-rect! r i '(255 250 180) (+ x 2) 5 1 5))))
+
+;; A torch: a stick and a flame whose tip leans by `lean` px, `height` tall.
+(define (draw-torch! r i lean height)
+  (sprite-rect! r i '(110 70 40) 7 10 2 6)
+  (sprite-rect! r i '(140 140 150) 6 9 4 2)
+  (sprite-rect! r i '(230 80 30) 5 (- 9 height) 6 height)
+  (sprite-rect! r i '(255 170 40) (+ 6 (quotient lean 2)) (- 9 (- height 2)) 4 (- height 2))
+  (sprite-rect! r i '(255 240 150) (+ 7 lean) (- 9 (- height 4)) 2 (- height 5)))
 
 (define (draw-sprites! r)
   (draw-player! r 0 12 '(4 4) '(9 4))        ; idle
@@ -130,7 +180,82 @@
   (tile-rect! r 4 '(0 0 0) 10 7 1 2)
   ;; bullet: a small bright slug
   (tile-rect! r 5 '(255 140 40) 4 6 8 4)
-  (tile-rect! r 5 '(255 230 120) 8 7 4 2))
+  (tile-rect! r 5 '(255 230 120) 8 7 4 2)
+  ;; row 1: the player blinking, the blob squashed and stretched, the bird
+  (draw-player! r 6 12 '(4 4) '(9 4))
+  (sprite-rect! r 6 '(250 200 160) 9 4 2 2)
+  (sprite-rect! r 6 '(20 20 30) 9 5 2 1)
+  (draw-blob! r 7 1 8 14 8 9)
+  (draw-blob! r 8 3 2 10 14 4)
+  (draw-bird! r 9 '(5 2 4 5))
+  (draw-bird! r 10 '(3 6 6 2))
+  (draw-bird! r 11 '(5 10 4 4))
+  ;; row 2: a spinning coin and a flickering torch
+  (draw-coin-frame! r 12 10)
+  (draw-coin-frame! r 13 6)
+  (draw-coin-frame! r 14 2)
+  (draw-torch! r 15 0 7)
+  (draw-torch! r 16 1 8)
+  (draw-torch! r 17 -1 6))
+
+;;; ------------------------------------------------------------------
+;;; font.png: 5 x 7 glyphs, each given as 7 rows of 5 bits (bit 4 = left).
+
+(define glyph-rows
+  '((#\space 0 0 0 0 0 0 0) (#\! 4 4 4 4 0 0 4) (#\" 10 10 10 0 0 0 0)
+    (#\# 10 10 31 10 31 10 10) (#\$ 4 15 20 14 5 30 4) (#\% 24 25 2 4 8 19 3)
+    (#\& 12 18 20 8 21 18 13) (#\' 12 4 8 0 0 0 0) (#\( 2 4 8 8 8 4 2)
+    (#\) 8 4 2 2 2 4 8) (#\* 0 4 21 14 21 4 0) (#\+ 0 4 4 31 4 4 0)
+    (#\, 0 0 0 0 12 4 8) (#\- 0 0 0 31 0 0 0) (#\. 0 0 0 0 0 12 12)
+    (#\/ 0 1 2 4 8 16 0) (#\0 14 17 19 21 25 17 14) (#\1 4 12 4 4 4 4 14)
+    (#\2 14 17 1 2 4 8 31) (#\3 31 2 4 2 1 17 14) (#\4 2 6 10 18 31 2 2)
+    (#\5 31 16 30 1 1 17 14) (#\6 6 8 16 30 17 17 14) (#\7 31 1 2 4 8 8 8)
+    (#\8 14 17 17 14 17 17 14) (#\9 14 17 17 15 1 2 12) (#\: 0 12 12 0 12 12 0)
+    (#\; 0 12 12 0 12 4 8) (#\< 2 4 8 16 8 4 2) (#\= 0 0 31 0 31 0 0)
+    (#\> 8 4 2 1 2 4 8) (#\? 14 17 1 2 4 0 4) (#\@ 14 17 1 13 21 21 14)
+    (#\A 14 17 17 17 31 17 17) (#\B 30 17 17 30 17 17 30) (#\C 14 17 16 16 16 17 14)
+    (#\D 28 18 17 17 17 18 28) (#\E 31 16 16 30 16 16 31) (#\F 31 16 16 30 16 16 16)
+    (#\G 14 17 16 23 17 17 15) (#\H 17 17 17 31 17 17 17) (#\I 14 4 4 4 4 4 14)
+    (#\J 7 2 2 2 2 18 12) (#\K 17 18 20 24 20 18 17) (#\L 16 16 16 16 16 16 31)
+    (#\M 17 27 21 21 17 17 17) (#\N 17 17 25 21 19 17 17) (#\O 14 17 17 17 17 17 14)
+    (#\P 30 17 17 30 16 16 16) (#\Q 14 17 17 17 21 18 13) (#\R 30 17 17 30 20 18 17)
+    (#\S 15 16 16 14 1 1 30) (#\T 31 4 4 4 4 4 4) (#\U 17 17 17 17 17 17 14)
+    (#\V 17 17 17 17 17 10 4) (#\W 17 17 17 21 21 21 10) (#\X 17 17 10 4 10 17 17)
+    (#\Y 17 17 17 10 4 4 4) (#\Z 31 1 2 4 8 16 31) (#\[ 14 8 8 8 8 8 14)
+    (#\\ 0 16 8 4 2 1 0) (#\] 14 2 2 2 2 2 14) (#\^ 4 10 17 0 0 0 0)
+    (#\_ 0 0 0 0 0 0 31) (#\` 8 4 2 0 0 0 0) (#\a 0 0 14 1 15 17 15)
+    (#\b 16 16 22 25 17 17 30) (#\c 0 0 14 16 16 17 14) (#\d 1 1 13 19 17 17 15)
+    (#\e 0 0 14 17 31 16 14) (#\f 6 9 8 28 8 8 8) (#\g 0 15 17 17 15 1 14)
+    (#\h 16 16 22 25 17 17 17) (#\i 4 0 12 4 4 4 14) (#\j 2 0 6 2 2 18 12)
+    (#\k 16 16 18 20 24 20 18) (#\l 12 4 4 4 4 4 14) (#\m 0 0 26 21 21 17 17)
+    (#\n 0 0 22 25 17 17 17) (#\o 0 0 14 17 17 17 14) (#\p 0 0 30 17 30 16 16)
+    (#\q 0 0 13 19 15 1 1) (#\r 0 0 22 25 16 16 16) (#\s 0 0 14 16 14 1 30)
+    (#\t 8 8 28 8 8 9 6) (#\u 0 0 17 17 17 19 13) (#\v 0 0 17 17 17 10 4)
+    (#\w 0 0 17 17 21 21 10) (#\x 0 0 17 10 4 10 17) (#\y 0 0 17 17 15 1 14)
+    (#\z 0 0 31 2 4 8 31) (#\{ 2 4 4 8 4 4 2) (#\| 4 4 4 4 4 4 4)
+    (#\} 8 4 4 2 4 4 8) (#\~ 0 0 8 21 2 0 0)))
+
+(define glyph-w 6)                       ; cell size, glyph 5 x 7 + shadow
+(define glyph-h 8)
+(define font-columns 16)
+
+;; Each set bit becomes a pixel at (dx + column, dy + row) of the cell.
+(define (draw-glyph! r index rows color dx dy)
+  (let ((x0 (* glyph-w (modulo index font-columns)))
+        (y0 (* glyph-h (quotient index font-columns))))
+    (let loop ((rows rows) (y 0))
+      (unless (null? rows)
+        (do ((bit 0 (+ bit 1))) ((= bit 5))
+          (when (odd? (arithmetic-shift (car rows) (- bit 4)))
+            (rect! r color (+ x0 dx bit) (+ y0 dy y) 1 1)))
+        (loop (cdr rows) (+ y 1))))))
+
+(define (draw-font! r)
+  (for-each (lambda (g)
+              (let ((index (- (char->integer (car g)) 32)))
+                (draw-glyph! r index (cdr g) '(24 20 40) 1 1)
+                (draw-glyph! r index (cdr g) '(255 255 255) 0 0)))
+            glyph-rows))
 
 ;;; ------------------------------------------------------------------
 ;;; WAV: RIFF, "WAVE", a fmt chunk (PCM, mono, 8 bit) and a data chunk.
@@ -168,13 +293,70 @@
                  (next (let ((p (+ phase (/ f rate)))) (- p (floor p)))))
             (loop (+ i 1) next (cons (inexact->exact (round (+ 128 v))) out)))))))
 
+;; Noise from a 16-bit shift register (the same bytes every run), its
+;; amplitude falling over `ms`, its pitch (register steps per sample)
+;; lowered every `hold` samples: an explosion.
+(define (noise-burst ms)
+  (let ((n (quotient (* rate ms) 1000)))
+    (let loop ((i 0) (reg #xACE1) (v 0) (out '()))
+      (if (= i n)
+          (reverse out)
+          (let* ((t (/ i n))
+                 (hold (+ 1 (quotient (* i 6) n)))   ; 1 .. 6: darker as it fades
+                 (step? (zero? (modulo i hold)))
+                 (bit (bitwise-and (bitwise-xor reg (arithmetic-shift reg -2)) 1))
+                 (reg (if step? (bitwise-ior (arithmetic-shift reg -1) (arithmetic-shift bit 15)) reg))
+                 (v (if step? (if (odd? reg) 1 -1) v))
+                 (amp (* 70 (- 1 t) (- 1 t))))
+            (loop (+ i 1) reg v (cons (inexact->exact (round (+ 128 (* amp v)))) out)))))))
+
+;;; The music: two bars of eighth notes at 120 bpm (4 s), an arpeggio on a
+;;; square wave over a triangle bass, C Am F G. Every note fades to silence
+;;; before the next begins, so the end joins the start without a click and
+;;; the file loops.
+
+(define eighth (quotient rate 4))         ; samples in an eighth note
+(define (midi->hz m) (* 440 (expt 2 (/ (- m 69) 12))))
+
+(define melody                          ; MIDI notes, one per eighth
+  '(72 76 79 76 69 72 76 72 65 69 72 77 67 71 74 79))
+(define bass                            ; one per quarter: root, octave
+  '(48 60 45 57 41 53 43 55))
+
+;; The sample (-1..1) of a voice `k` samples into a note of `len` samples.
+(define (square-voice hz k len)
+  (let ((phase (let ((p (/ (* hz k) rate))) (- p (floor p))))
+        (env (* (min 1 (/ k 64)) (expt (- 1 (/ k len)) 2))))
+    (* env (if (< phase 0.5) 1 -1))))
+
+(define (triangle-voice hz k len)
+  (let ((phase (let ((p (/ (* hz k) rate))) (- p (floor p))))
+        (env (* (min 1 (/ k 64)) (- 1 (/ k len)))))
+    (* env (- (* 4 (abs (- phase 0.5))) 1))))
+
+(define (music-loop)
+  (let ((n (* eighth (length melody))))
+    (let loop ((i (- n 1)) (out '()))
+      (if (< i 0)
+          out
+          (let* ((lead (square-voice (midi->hz (list-ref melody (quotient i eighth)))
+                                     (modulo i eighth) eighth))
+                 (quarter (* 2 eighth))
+                 (low (triangle-voice (midi->hz (list-ref bass (quotient i quarter)))
+                                      (modulo i quarter) quarter))
+                 (v (+ 128 (* 30 lead) (* 50 low))))
+            (loop (- i 1) (cons (max 0 (min 255 (inexact->exact (round v)))) out)))))))
+
 ;;; ------------------------------------------------------------------
 
 (create-directory out-dir #t)
 (init! '(video))
 (make-png! (string-append out-dir "/tiles.png") (* 8 T) T draw-tiles!)
-(make-png! (string-append out-dir "/sprites.png") (* 6 T) T draw-sprites!)
+(make-png! (string-append out-dir "/sprites.png") (* 6 T) (* 3 T) draw-sprites!)
+(make-png! (string-append out-dir "/font.png") (* font-columns glyph-w) (* 6 glyph-h) draw-font!)
 (quit!)
 (write-wav! (string-append out-dir "/jump.wav") (square-sweep 300 700 150))
 (write-wav! (string-append out-dir "/coin.wav")
             (append (square-sweep 990 990 60) (square-sweep 1320 1320 120)))
+(write-wav! (string-append out-dir "/boom.wav") (noise-burst 500))
+(write-wav! (string-append out-dir "/music.wav") (music-loop))
