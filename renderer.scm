@@ -5,16 +5,35 @@
 ;;; draws, in this order:
 ;;;   1. the whole target cleared to the scene's background, a list
 ;;;      (r g b [a]) of 0..255 values; black when the background is #f;
-;;;   2. every visible tile layer of the scene's tilemap, in the map's
-;;;      order, with the layer's offset and its opacity (as the texture's
-;;;      alpha modulation). Only the cells that the camera view touches are
-;;;      drawn: a cell partly inside the view at any edge is drawn. A cell's
-;;;      image comes from the tileset covering its gid (columns, spacing,
-;;;      margin; image-collection tilesets use each tile's own image), and
-;;;      its flip flags are honoured (horizontal, vertical, and diagonal, the
-;;;      last as a 90 degree rotation, exact for square tiles). A tile whose
-;;;      tileset tiles are taller than the map's cells is drawn bottom-aligned
-;;;      to its cell, as Tiled does;
+;;;   2. every visible layer of the scene's tilemap, in the map's order
+;;;      (Tiled's: a group's children where the group is), each through
+;;;      its layer camera (parallax and offset, below), with its opacity
+;;;      and tint as the textures' alpha and colour modulation (reset to
+;;;      none afterwards). A layer's tint is its tintcolor multiplied by
+;;;      its groups' tints; a tint's alpha multiplies the opacity.
+;;;      - tile layers: only the cells that the view touches are drawn: a
+;;;        cell partly inside the view at any edge is drawn. A cell's image
+;;;        comes from the tileset covering its gid (columns, spacing,
+;;;        margin; image-collection tilesets use each tile's own image),
+;;;        moved by the tileset's <tileoffset>, and its flip flags are
+;;;        honoured (horizontal, vertical, and diagonal, the last as a 90
+;;;        degree rotation, exact for square tiles). A tile whose tileset
+;;;        tiles are taller than the map's cells is drawn bottom-aligned to
+;;;        its cell, as Tiled does;
+;;;      - image layers: the layer's image at the layer's offset, at its own
+;;;        size; repeatx / repeaty repeat it along that axis across the
+;;;        whole view;
+;;;      - object layers: the visible tile objects (those with a gid), each
+;;;        the tile's image stretched over the object's box
+;;;        (tilemap-object-box: hung from its anchor, bottom-left unless
+;;;        the tileset's objectalignment says otherwise), flipped by its
+;;;        horizontal / vertical flags, rotated by its rotation (degrees
+;;;        clockwise) about its anchor point; in the layer's draw order
+;;;        (topdown: by y, ties in file order; index: file order). Other
+;;;        shapes are drawn only by the debug overlay;
+;;;      Only orthogonal maps are drawn: another orientation is an error
+;;;      "unsupported orientation isometric in FILE: only orthogonal maps
+;;;      are drawn", raised before anything is drawn;
 ;;;   3. the entities, in list order: with #:tile-id, that tile of the
 ;;;      scene's tileset (scene-tileset, else the tilemap's first tileset)
 ;;;      from scene-tileset-texture (else the texture `textures` gives for
@@ -31,25 +50,42 @@
 ;;; The rounding rule: a world position x (an exact integer, a rational or
 ;;; a flonum) is drawn at the whole screen pixel
 ;;;     screen-x = floor(x - camera-x),   screen-y = floor(y - camera-y)
-;;; for tiles (x = column * tile-width + layer offset) and entities alike;
+;;; for entities, and with the layer camera instead of the camera for
+;;; tiles (x = column * tile-width), images and objects;
 ;;; sizes are whole pixels already (tile sizes) or rounded the same way
 ;;; (an entity's rect covers floor(x - cx) to floor(x + w - cx)).
 ;;; So everything moves by whole pixels together and nothing jitters against
 ;;; the map.
 ;;;
+;;; The layer camera. A layer with parallax factors (px, py) (Tiled's
+;;; parallaxx / parallaxy, multiplied through groups) in a map whose
+;;; parallax origin is (ox, oy) is seen through
+;;;     lx = ox + (camera-x - ox) * px - offset-x    (ly likewise)
+;;; so it moves px pixels for each pixel the camera moves (0: fixed on the
+;;; screen, 1: with the map) and sits at its own offset whenever the camera
+;;; is at the parallax origin. Tiled's editor previews parallax about the
+;;; centre of its view instead; a game's camera is its top-left corner.
+;;;
 ;;; The view: view-width x view-height pixels starting at the camera; by
 ;;; default the renderer's logical size, or its output size when none is set.
 ;;;
-;;; Textures for tilesets: `textures:` maps a tileset image path (the
-;;; resolved path `image-source` gives) to a texture of this renderer. It is
+;;; Textures: `textures:` maps an image path of a tileset or an image layer
+;;; (the resolved path `image-source` gives) to a texture of this renderer
+;;; (game-load-scene! loads them all). It is
 ;;; either a procedure (path -> texture or #f) or an alist of
 ;;; (path . texture) compared with equal?. The scene's tileset-texture is
-;;; used for the scene's tileset when `textures` gives nothing. A tile
-;;; layer needing a tileset image with no texture is an error naming the path.
+;;; used for the scene's tileset when `textures` gives nothing. A layer
+;;; needing an image with no texture is an error naming the path (and, for
+;;; an image layer, the layer).
 ;;;
 ;;; The debug overlay. (render-debug-overlay! renderer scene #!key
 ;;; view-width view-height velocity-scale), which render-scene! calls last
-;;; when given `debug?: #t`, draws for every entity with a numeric #:width
+;;; when given `debug?: #t`, draws first, with a tilemap, the outline of
+;;; the box (tilemap-object-box) of every visible object of every visible
+;;; object layer, through its layer camera, in *debug-object-color*
+;;; (magenta): rectangles, ellipses, text, polygons (their points' bounding
+;;; box) and tile objects alike, a point as one pixel, rotation ignored.
+;;; Then for every entity with a numeric #:width
 ;;; and #:height, through the scene's camera and with the rounding rule:
 ;;;   1. with a tilemap, the outline of every tile cell its AABB covers, in
 ;;;      *debug-cell-color* (blue): columns floor(x/T) to ceil((x+w)/T) - 1,
@@ -67,9 +103,10 @@
 ;;; hitbox and velocity line drawn in *debug-warning-color* (red) instead.
 ;;; Outlines are one pixel wide, drawn inside the rectangle (SDL's draw-rect).
 ;;;
-;;; Not drawn (yet): parallax factors, layer tint, object, image and group
-;;; layers' own content (their tile children are drawn), hexagonal and
-;;; isometric orientations (cells are laid out orthogonally).
+;;; Not drawn: shapes other than tile objects (except as debug outlines),
+;;; text objects, an image layer's transparent colour (trans), and
+;;; isometric, staggered and hexagonal maps (refused, see above). Entities
+;;; are drawn above every layer of the map.
 
 (module (downstroke renderer)
   (render-scene! render-map-layers! render-entities! render-entity!

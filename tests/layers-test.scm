@@ -277,6 +277,39 @@
     (test "topdown: the lower object is drawn last, whatever the file order" ly-magenta (px 5 5))
     (test "index: file order; the layer's offset moves its objects" ly-yellow (px 21 5))))
 
+(test-group "layers: tileset offsets"
+  (let ((path (ly-path "offset.tmx")))
+    (with-output-to-file path
+      (lambda ()
+        (display "<?xml version=\"1.0\" encoding=\"UTF-8\"?>
+<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"4\" height=\"3\" tilewidth=\"8\" tileheight=\"8\" infinite=\"0\">
+ <tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"4\" columns=\"4\">
+  <tileoffset x=\"2\" y=\"1\"/>
+  <image source=\"tiles.png\" width=\"32\" height=\"8\"/>
+ </tileset>
+ <layer name=\"t\" width=\"4\" height=\"3\"><data encoding=\"csv\">0,0,0,0,0,2,0,0,0,0,0,0</data></layer>
+ <objectgroup name=\"o\"><object id=\"1\" gid=\"4\" x=\"0\" y=\"24\" width=\"8\" height=\"8\"/></objectgroup>
+</map>
+")))
+    (let ((px (ly-draw path 0 0)))
+      (test "a tile layer's cells move by their tileset's <tileoffset>: (8, 8) + (2, 1)"
+            (list ly-bg ly-yellow ly-yellow ly-bg) (list (px 9 9) (px 10 9) (px 17 16) (px 18 16)))
+      (test "and so do tile objects: (0, 16) + (2, 1)" (list ly-bg ly-cyan ly-cyan)
+            (list (px 1 17) (px 2 17) (px 9 23))))
+    (test "the object's box says so too" '(2 17 8 8)
+          (receive (x y w h) (tilemap-object-box (load-tilemap path)
+                                                 (car (tilemap-objects (load-tilemap path))))
+            (list x y w h)))))
+
+(test-group "layers: sdl2 additions"
+  (test "current-video-driver under the test suites' dummy driver" "dummy" (current-video-driver))
+  (test "renderer-name of a software renderer" "software" (renderer-name ly-renderer))
+  (texture-color-mod-set! ly-tex 1 2 3)
+  (test "texture-color-mod reads back what was set" '(1 2 3)
+        (receive (r g b) (texture-color-mod ly-tex) (list r g b)))
+  (texture-color-mod-set! ly-tex 255 255 255)
+  (test-error "a colour component out of range" (texture-color-mod-set! ly-tex 256 0 0)))
+
 (test-group "layers: layer order"
   (let ((px (ly-draw (ly-write-map! "order.tmx" 4 3
                                     (string-append
