@@ -198,7 +198,7 @@
   ;;; ------------------------------------------------------------------
   ;;; Map objects as entities.
   ;;;
-  ;;; (map-object->entity tm object #!key prefabs) -> an entity alist
+  ;;; (map-object->entity tm object #!key prefabs layer) -> an entity alist
   ;;; (tilemap-objects->entities tm #!key prefabs (layers #t)) -> a list
   ;;;
   ;;; An object of a Tiled object layer becomes an entity with, in order:
@@ -208,7 +208,10 @@
   ;;;                its box (tilemap-object-box): the top-left corner, so a
   ;;;                tile object, which Tiled anchors at its bottom-left,
   ;;;                gets #:y = y - height; a polygon its points' bounding
-  ;;;                box; a point 0 x 0;
+  ;;;                box; a point 0 x 0. Given the object's layer (layer:,
+  ;;;                which tilemap-objects->entities always gives), the
+  ;;;                layer's offset (its groups' included) is added, so the
+  ;;;                entity is where Tiled shows the object;
   ;;;   #:object-id  Tiled's object id;
   ;;;   #:name       the object's name, when it has one;
   ;;;   #:tile-id    tile objects: the tile's gid (flags cleared), the number
@@ -267,12 +270,14 @@
     (let ((c (object-class o)))
       (and (not (equal? c "")) (string->symbol c))))
 
-  (define (map-object->entity tm o #!key (prefabs #f))
+  (define (map-object->entity tm o #!key (prefabs #f) (layer #f))
     (when (and prefabs (not (prefabs? prefabs)))
       (error 'map-object->entity "prefabs: must be a prefab collection (load-prefabs) or #f"
              prefabs))
-    (receive (x y w h) (tilemap-object-box tm o)
-      (let* ((type (object-type-symbol o))
+    (receive (bx by w h) (tilemap-object-box tm o)
+      (let* ((x (if layer (+ bx (layer-offset-x layer)) bx))
+             (y (if layer (+ by (layer-offset-y layer)) by))
+             (type (object-type-symbol o))
              (shape (object-shape o))
              (points (object-points o))
              (x0 (if (pair? points) (apply min (map car points)) 0))
@@ -329,7 +334,7 @@
                         (layer-name layer) (object-id o)
                         (if (equal? (object-name o) "") "" (sprintf " (~s)" (object-name o)))
                         ((condition-property-accessor 'exn 'message "unknown error") exn)))
-      (map-object->entity tm o prefabs: prefabs)))
+      (map-object->entity tm o prefabs: prefabs layer: layer)))
 
   (define (tilemap-objects->entities tm #!key (prefabs #f) (layers #t))
     (when (and prefabs (not (prefabs? prefabs)))

@@ -399,7 +399,7 @@
                    (ly-tile-object 2 (+ 2 #x80000000) 8 24 "class=\"crate\"")
                    "  <object id=\"3\" type=\"coin\" x=\"40\" y=\"4\"><point/></object>\n"
                    "  <object id=\"4\" x=\"10\" y=\"10\" rotation=\"30\"><polygon points=\"0,0 6,-2 4,5\"/></object>\n")
-                  (ly-object-layer "other" "visible=\"0\""
+                  (ly-object-layer "other" "visible=\"0\" offsetx=\"3\" offsety=\"-2\""
                                    "  <object id=\"5\" type=\"door\" x=\"0\" y=\"0\" width=\"8\" height=\"16\"/>\n"))))
 
 (define ly-prefabs
@@ -431,7 +431,9 @@
           (map (lambda (k) (entity-ref (e 4) k #f))
                '(#:type #:x #:y #:width #:height #:shape #:points #:rotation))))
   (let ((es (tilemap-objects->entities (load-tilemap ly-objects-map) layers: '("other"))))
-    (test "layers: a list of names" '(door) (map entity-type es)))
+    (test "layers: a list of names" '(door) (map entity-type es))
+    (test "the layer's offset is added to the position" '(3 -2)
+          (list (entity-ref (car es) #:x) (entity-ref (car es) #:y))))
   (let ((es (tilemap-objects->entities (load-tilemap ly-objects-map)
                                        layers: (lambda (l) (not (layer-visible? l))))))
     (test "layers: a predicate" '(5) (map (lambda (e) (entity-ref e #:object-id)) es)))
@@ -447,6 +449,14 @@
                '(#:type #:x #:y #:width #:height #:value #:tags #:color)))
     (test "objects of other types are converted plainly" '(crate #f)
           (list (entity-type (cadr es)) (entity-ref (cadr es) #:solid? #f))))
+  ;; a prefab that cannot be instantiated: its first animation is not an entity
+  (test-error "a failing conversion names the map, the object layer and the object"
+              (lambda (e) (substring-index
+                           (sprintf "~a: object layer \"things\", object 1 (\"bag\"): " ly-objects-map)
+                           (error-text e)))
+              (tilemap-objects->entities
+               (load-tilemap ly-objects-map)
+               prefabs: (parse-prefabs '((prefabs (coin animated #:animations ((1 2))))))))
   (test-error "prefabs: must be a prefab collection"
               (lambda (e) (substring-index "prefabs:" (error-text e)))
               (tilemap-objects->entities (load-tilemap ly-objects-map) prefabs: '(coin)))
