@@ -56,14 +56,14 @@ $(BUILD)/downstroke.%.so: %.scm | $(BUILD)
 $(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.tilemap.so
+$(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.prefabs.so
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
 $(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so
 $(BUILD)/downstroke.sound.so:     $(BUILD)/downstroke.sdl2.so
 $(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.sdl2.so
 $(BUILD)/downstroke.assets.so:    $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.prefabs.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.text.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
+$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.text.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
 $(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
 
 # Tiled's own example maps, from Debian's tiled package (cached in tests/data).

@@ -413,62 +413,105 @@
          (when (and owns-sdl (sdl-initialized?)) (quit!))))
       (if record (game-recording game) ran)))
 
-  ;;; ------------------------------------------------------------------
+;;; ------------------------------------------------------------------
   ;;; (game-load-scene! game tmx-path #!key entities background camera
-  ;;;                   camera-target engine-update)
+  ;;;                   camera-target engine-update objects->entities prefabs)
   ;;;
   ;;; Loads the TMX map (load-tilemap), a texture with the game's renderer
   ;;; for every tileset image (and every tile image of image-collection
-  ;;; tilesets), and makes a scene of them the game's scene, which it also
-  ;;; returns. The scene's tileset-texture is the first tileset's texture
-  ;;; (entity sprites); every texture is in game-textures, which the frame
-  ;;; loop passes to render-scene!. It needs the renderer, so it is called
-  ;;; from a hook during game-run! (create: is the usual place). Loading
-  ;;; another scene destroys the previous scene's textures (each is freed
-  ;;; once); the rest are freed when game-run! ends. Map objects are not
-  ;;; turned into entities here: pass entities:.
+  ;;; tilesets) and every image layer's image, and makes a scene of them
+  ;;; the game's scene, which it also returns. The scene's tileset-texture
+  ;;; is the first tileset's texture (entity sprites); every texture is in
+  ;;; game-textures, which the frame loop passes to render-scene!. It needs
+  ;;; the renderer, so it is called from a hook during game-run! (create:
+  ;;; is the usual place). Loading another scene destroys the previous
+  ;;; scene's textures (each is freed once); the rest are freed when
+  ;;; game-run! ends.
+  ;;;
+  ;;; Map objects become entities only when asked (existing callers, which
+  ;;; pass their entities with entities:, see no change):
+  ;;;   objects->entities: #t converts the objects of every object layer,
+  ;;;     a list of layer names those layers' only, a predicate on layer
+  ;;;     records the layers it accepts; #f none. Default: #f, or #t when
+  ;;;     prefabs: is given.
+  ;;;   prefabs: a collection from load-prefabs: an object whose type (class)
+  ;;;     names a prefab is instantiated from it.
+  ;;; The conversion is (downstroke scene)'s tilemap-objects->entities (see
+  ;;; there for the keys an object gives). The scene's entities are the
+  ;;; map's, in file order, followed by entities:, so the caller's (a
+  ;;; player, say) draw on top. The object layers converted are hidden in
+  ;;; the scene's map (tilemap-hide-layers: their objects are still listed
+  ;;; by tilemap-objects), so a tile object is drawn once, as its entity.
+  ;;;
+  ;;; Nothing is changed before the map has loaded, is known to be
+  ;;; orthogonal (another orientation is an error naming the file), its
+  ;;; objects are converted and every texture is loaded; a texture that
+  ;;; fails to load frees the ones loaded before it.
 
   (define (free-textures! game)
     (for-each (lambda (p) (destroy-texture! (cdr p))) (game-textures game))
     (game-textures-set! game '()))
 
+  ;; Every image the map draws: tileset images, tile images of image
+  ;; collections, image layers' images; each path once, in that order.
   (define (tilemap-image-paths tm)
-    (let loop ((tss (tilemap-tilesets tm)) (out '()))
-      (if (null? tss)
-          (reverse out)
-          (let* ((ts (car tss))
-                 (img (tileset-image ts))
-                 (paths (if img
-                            (list (image-source img))
-                            (let tl ((tiles (tileset-tiles ts)))
-                              (cond ((null? tiles) '())
-                                    ((and (tile-image (car tiles)) (image-source (tile-image (car tiles))))
-                                     (cons (image-source (tile-image (car tiles))) (tl (cdr tiles))))
-                                    (else (tl (cdr tiles))))))))
-            (loop (cdr tss)
-                  (let add ((ps paths) (out out))
-                    (cond ((null? ps) out)
-                          ((or (not (car ps)) (member (car ps) out)) (add (cdr ps) out))
-                          (else (add (cdr ps) (cons (car ps) out))))))))))
+    (let* ((tileset-paths
+            (append-map*
+             (lambda (ts)
+               (let ((img (tileset-image ts)))
+                 (if img
+                     (list (image-source img))
+                     (map (lambda (t) (and (tile-image t) (image-source (tile-image t))))
+                          (tileset-tiles ts)))))
+             (tilemap-tilesets tm)))
+           (layer-paths (map (lambda (l) (and (layer-image l) (image-source (layer-image l))))
+                             (tilemap-image-layers tm))))
+      (let add ((ps (append tileset-paths layer-paths)) (out '()))
+        (cond ((null? ps) (reverse out))
+              ((or (not (car ps)) (member (car ps) out)) (add (cdr ps) out))
+              (else (add (cdr ps) (cons (car ps) out)))))))
+
+  (define (append-map* f l) (apply append (map f l)))
+
+  (define unset-key (list 'unset))
 
   (define (game-load-scene! game tmx-path #!key (entities '()) (background #f)
                             (camera (make-camera)) (camera-target 'camera-target)
-                            (engine-update #f))
+                            (engine-update #f) (objects->entities unset-key) (prefabs #f))
     (let ((r (game-renderer game)))
       (unless (and r (renderer-alive? r))
         (error 'game-load-scene!
                (sprintf "no renderer: call it from a hook during game-run! (loading ~s)" tmx-path)))
       (let* ((tm (load-tilemap tmx-path))
-             (textures (map (lambda (path) (cons path (img-load-texture! r path)))
-                            (tilemap-image-paths tm)))
+             (_ (check-map-orientation 'game-load-scene! tm))
+             (convert (if (eq? objects->entities unset-key) (and prefabs #t) objects->entities))
+             (convert? (object-layer-selector 'game-load-scene! convert))
+             (map-entities (tilemap-objects->entities tm prefabs: prefabs layers: convert?))
+             (textures (load-textures! r (tilemap-image-paths tm)))
              (first-ts (and (pair? (tilemap-tilesets tm)) (car (tilemap-tilesets tm))))
              (first-img (and first-ts (tileset-image first-ts)))
              (first-tex (and first-img (let ((p (assoc (image-source first-img) textures)))
                                          (and p (cdr p)))))
-             (scene (make-scene entities: entities tilemap: tm tileset-texture: first-tex
+             (shown (if convert
+                        (tilemap-hide-layers tm (lambda (l) (and (eq? (layer-kind l) 'object)
+                                                                 (convert? l))))
+                        tm))
+             (scene (make-scene entities: (append map-entities entities)
+                                tilemap: shown tileset-texture: first-tex
                                 background: background camera: camera
                                 camera-target: camera-target engine-update: engine-update)))
         (free-textures! game)
         (game-textures-set! game textures)
         (game-scene-set! game scene)
-        scene))))
+        scene)))
+
+  ;; (path . texture) for each path; on a failure the ones loaded are freed.
+  (define (load-textures! r paths)
+    (let loop ((ps paths) (out '()))
+      (if (null? ps)
+          (reverse out)
+          (let ((tex (handle-exceptions exn
+                         (begin (for-each (lambda (p) (destroy-texture! (cdr p))) out)
+                                (signal exn))
+                       (img-load-texture! r (car ps)))))
+            (loop (cdr ps) (cons (cons (car ps) tex) out)))))))

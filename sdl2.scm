@@ -38,6 +38,7 @@
 (module (downstroke sdl2)
   (;; subsystem
    init! quit! sdl-initialized? get-error get-ticks delay!
+   current-video-driver
    ;; rects
    make-rect rect? rect-x rect-y rect-w rect-h
    ;; windows
@@ -45,7 +46,7 @@
    window-title-set!
    ;; renderers
    create-renderer! create-software-renderer! destroy-renderer! renderer?
-   renderer-alive? renderer-software? renderer-output-size
+   renderer-alive? renderer-software? renderer-output-size renderer-name
    ;; for sibling FFI modules (text, ...): the native SDL_Renderer*
    renderer-pointer
    render-set-logical-size! render-logical-size
@@ -55,6 +56,7 @@
    ;; textures
    img-load-texture! destroy-texture! texture? texture-alive? texture-size
    texture-alpha-mod-set! texture-alpha-mod
+   texture-color-mod-set! texture-color-mod
    ;; surfaces
    create-rgba-surface! free-surface! surface? surface-alive? surface-size
    img-save-png! img-load-surface! rgba-pixels->surface! surface-pixels
@@ -175,6 +177,11 @@ EOF
     (void))
 
   (define get-ticks (foreign-lambda unsigned-integer32 "SDL_GetTicks"))
+
+  ;; The name of the video driver SDL is using ("x11", "wayland",
+  ;; "dummy", ...), or #f when video is not initialised.
+  (define current-video-driver
+    (foreign-lambda c-string "SDL_GetCurrentVideoDriver"))
   (define (delay! ms) ((foreign-lambda void "SDL_Delay" unsigned-integer32) ms))
 
   ;;; ------------------------------------------------------------------
@@ -447,6 +454,17 @@ EOF
                        p (location w) (location h)))
         (values w h))))
 
+  ;; The name SDL gives the renderer's backend ("software", "opengl", ...).
+  (define (renderer-name r)
+    (let ((p (live-renderer 'renderer-name r)))
+      (let ((name ((foreign-lambda* c-string ((c-pointer r))
+                     "SDL_RendererInfo info;
+                      if (SDL_GetRendererInfo((SDL_Renderer*)r, &info) < 0) C_return(NULL);
+                      C_return(info.name);")
+                   p)))
+        (unless name (sdl-error 'renderer-name "SDL_GetRendererInfo"))
+        name)))
+
   (define (render-set-logical-size! r w h)
     (check-status 'render-set-logical-size! "SDL_RenderSetLogicalSize"
                   ((foreign-lambda int "SDL_RenderSetLogicalSize" c-pointer int int)
@@ -589,6 +607,28 @@ EOF
                       ((foreign-lambda int "SDL_GetTextureAlphaMod" c-pointer (c-pointer unsigned-byte))
                        p (location a)))
         a)))
+
+  ;; red, green, blue: 0..255, multiplied into the colour of every pixel
+  ;; the texture draws (255 255 255 leaves it unchanged).
+  (define (texture-color-mod-set! t red green blue)
+    (check-status 'texture-color-mod-set! "SDL_SetTextureColorMod"
+                  ((foreign-lambda int "SDL_SetTextureColorMod" c-pointer
+                                   unsigned-byte unsigned-byte unsigned-byte)
+                   (live-texture 'texture-color-mod-set! t)
+                   (byte 'texture-color-mod-set! red)
+                   (byte 'texture-color-mod-set! green)
+                   (byte 'texture-color-mod-set! blue))))
+
+  ;; (values red green blue)
+  (define (texture-color-mod t)
+    (let ((p (live-texture 'texture-color-mod t)))
+      (let-location ((r unsigned-byte 0) (g unsigned-byte 0) (b unsigned-byte 0))
+        (check-status 'texture-color-mod "SDL_GetTextureColorMod"
+                      ((foreign-lambda int "SDL_GetTextureColorMod" c-pointer
+                                       (c-pointer unsigned-byte) (c-pointer unsigned-byte)
+                                       (c-pointer unsigned-byte))
+                       p (location r) (location g) (location b)))
+        (values r g b))))
 
   ;;; ------------------------------------------------------------------
   ;;; Surfaces

@@ -65,6 +65,7 @@
    tilemap-parallax-origin-x tilemap-parallax-origin-y tilemap-background-color
    tilemap-tilesets tilemap-layer-tree tilemap-all-layers tilemap-object-layers
    tilemap-image-layers tilemap-objects tilemap-tileset-for tilemap-tile-info
+   tilemap-hide-layers tilemap-object-box tilemap-object-anchor
    ;; cells
    cell-gid cell-flags cell-flipped-horizontally? cell-flipped-vertically?
    cell-flipped-diagonally? cell-rotated-hex-120?
@@ -298,6 +299,94 @@
   (define (tilemap-object-layers tm) (layers-of-kind tm 'object))
   (define (tilemap-image-layers tm) (layers-of-kind tm 'image))
   (define (tilemap-objects tm) (append-map layer-objects (tilemap-object-layers tm)))
+
+  ;; A copy of the map in which every layer satisfying (hide? layer) is
+  ;; invisible (layer-visible? #f), a group's children included. Nothing
+  ;; else changes: cells, objects, and which cells are solid (collision
+  ;; ignores visibility) stay as they were. game-load-scene! uses it to hide
+  ;; the object layers whose objects became entities, so they are drawn once.
+  (define (tilemap-hide-layers tm hide?)
+    (define renamed '())                ; (old tile layer . its copy)
+    (define (copy l visible? children)
+      (%make-layer (layer-kind l) (layer-id l) (layer-name l) (layer-class l)
+                   (layer-width l) (layer-height l) (layer-data l)
+                   visible? (layer-opacity l) (layer-tint l)
+                   (layer-offset-x l) (layer-offset-y l)
+                   (layer-parallax-x l) (layer-parallax-y l)
+                   (layer-locked? l) (layer-properties l) (layer-objects l)
+                   (layer-draw-order l) (layer-color l) (layer-image l)
+                   (layer-repeat-x? l) (layer-repeat-y? l) children))
+    ;; in-hidden?: inside a group being hidden
+    (define (walk l in-hidden?)
+      (let* ((h (or in-hidden? (and (hide? l) #t)))
+             (new (if (and (not h) (null? (layer-children l)))
+                      l
+                      (copy l (and (not h) (layer-visible? l))
+                            (map (lambda (c) (walk c h)) (layer-children l))))))
+        (when (eq? (layer-kind l) 'tile)
+          (set! renamed (cons (cons l new) renamed)))
+        new))
+    (let* ((tree (map (lambda (l) (walk l #f)) (tilemap-layer-tree tm)))
+           (layers (map (lambda (l) (let ((p (assq l renamed))) (if p (cdr p) l)))
+                        (tilemap-layers tm))))
+      (%make-tilemap (tilemap-width tm) (tilemap-height tm)
+                     (tilemap-tile-width tm) (tilemap-tile-height tm)
+                     layers (tilemap-properties tm) (tilemap-solid-grid tm)
+                     (tilemap-origin-col tm) (tilemap-origin-row tm)
+                     (tilemap-info tm) (tilemap-tilesets tm) tree)))
+
+  ;; Where a tile object's image hangs from its (x, y): the fractions of
+  ;; its width and height left of and above that point, (values ax ay).
+  ;; Tiled's default (unspecified) for orthogonal maps is bottom-left.
+  (define (tilemap-object-anchor tm object)
+    (let* ((ts (tilemap-tileset-for tm (object-cell object)))
+           (align (if ts (tileset-object-alignment ts) 'unspecified)))
+      (case align
+        ((top-left) (values 0 0)) ((top) (values 1/2 0)) ((top-right) (values 1 0))
+        ((left) (values 0 1/2)) ((center) (values 1/2 1/2)) ((right) (values 1 1/2))
+        ((bottom) (values 1/2 1)) ((bottom-right) (values 1 1))
+        (else (values 0 1)))))          ; bottom-left, unspecified
+
+  ;; The unrotated box an object covers, (values x y width height) in map
+  ;; pixels, x y its top-left corner:
+  ;;   tile objects: the tile's image placed by the anchor above, at the
+  ;;     object's size (the tile's own size when the object gives 0),
+  ;;     moved by its tileset's <tileoffset>;
+  ;;   polygons and polylines: the bounding box of their points;
+  ;;   the rest (rectangles, ellipses, text, points): x y width height as
+  ;;     written (a point is 0 x 0).
+  (define (tilemap-object-box tm object)
+    (let ((x (object-x object)) (y (object-y object))
+          (w (object-width object)) (h (object-height object)))
+      (case (object-shape object)
+        ((tile)
+         (let* ((ts (tilemap-tileset-for tm (object-cell object)))
+                (tile (and ts (tileset-tile ts (- (object-gid object) (tileset-first-gid ts)))))
+                (tw (cond ((not ts) 0)
+                          ((tileset-image ts) (tileset-tile-width ts))
+                          ((and tile (tile-width tile)))
+                          ((and tile (tile-image tile) (image-width (tile-image tile))))
+                          (else (tileset-tile-width ts))))
+                (th (cond ((not ts) 0)
+                          ((tileset-image ts) (tileset-tile-height ts))
+                          ((and tile (tile-height tile)))
+                          ((and tile (tile-image tile) (image-height (tile-image tile))))
+                          (else (tileset-tile-height ts))))
+                (w (if (zero? w) tw w))
+                (h (if (zero? h) th h)))
+           (receive (ax ay) (tilemap-object-anchor tm object)
+             (values (+ (- x (* ax w)) (if ts (tileset-offset-x ts) 0))
+                     (+ (- y (* ay h)) (if ts (tileset-offset-y ts) 0))
+                     w h))))
+        ((polygon polyline)
+         (let ((ps (object-points object)))
+           (if (null? ps)
+               (values x y 0 0)
+               (let ((x0 (apply min (map car ps))) (x1 (apply max (map car ps)))
+                     (y0 (apply min (map cdr ps))) (y1 (apply max (map cdr ps))))
+                 (values (+ x x0) (+ y y0) (- x1 x0) (- y1 y0))))))
+        ((point) (values x y 0 0))
+        (else (values x y w h)))))
 
   ;; The tileset a gid (flags allowed) belongs to: the one with the highest
   ;; firstgid not above it. #f for gid 0 or below every firstgid.
