@@ -75,17 +75,26 @@
             (else (loop (cddr ks) n)))))
 
   ;; (entity-let e ((var key) ...) body ...) binds each var to e's pair for
-  ;; key, or #f when e has no such key: one walk of e for all of them.
+  ;; key, or #f when e has no such key: one walk of e for all of them. The
+  ;; walk carries the pairs found as loop arguments, so nothing is boxed.
   (define-syntax entity-let
     (syntax-rules ()
       ((_ e ((var key) ...) body0 body ...)
-       (let ((var #f) ...)
-         (let walk ((rest e))
-           (when (pair? rest)
+       (%entity-let (walk rest p k) e (var ...) () ((var key) ...) () (body0 body ...)))))
+
+  ;; Builds one cond clause per key: (eq? k key) passes p in that key's place.
+  (define-syntax %entity-let
+    (syntax-rules ()
+      ((_ (walk rest p k) e (var ...) done () (clause ...) (body ...))
+       (let walk ((rest e) (var #f) ...)
+         (if (pair? rest)
              (let* ((p (car rest)) (k (car p)))
-               (cond ((eq? k key) (unless var (set! var p))) ...))
-             (walk (cdr rest))))
-         (let () body0 body ...)))))
+               (cond clause ... (else (walk (cdr rest) var ...))))
+             (let () body ...))))
+      ((_ (walk rest p k) e vars (done ...) ((v key) (rv rk) ...) (clause ...) bodies)
+       (%entity-let (walk rest p k) e vars (done ... v) ((rv rk) ...)
+                    (clause ... ((eq? k key) (walk (cdr rest) done ... (or v p) rv ...)))
+                    bodies))))
 
   (define (entity-update e key proc #!optional (default #f))
     (entity-set e key (proc (entity-ref e key default))))

@@ -69,10 +69,17 @@
   ;; cover that tile. A zero-size span on a tile edge covers no cell (last <
   ;; first); elsewhere it covers the one cell it lies in.
   (define (entity-cell-span pos size tile)
+    (values (span-first pos tile) (span-last pos size tile)))
+
+  (define (span-first pos tile)
+    (if (exact-integer? pos)
+        (floor-div pos tile)
+        (->integer (floor (/ pos tile)))))
+
+  (define (span-last pos size tile)
     (if (and (exact-integer? pos) (exact-integer? size))
-        (values (floor-div pos tile) (floor-div (+ pos size -1) tile))
-        (values (->integer (floor (/ pos tile)))
-                (- (->integer (ceiling (/ (+ pos size) tile))) 1))))
+        (floor-div (+ pos size -1) tile)
+        (- (->integer (ceiling (/ (+ pos size) tile))) 1)))
 
   ;; Every (col . row) cell the entity's AABB covers, row by row.
   (define (entity-tile-cells entity tilemap)
@@ -213,19 +220,25 @@
   ;; v (not 0) this frame, spanning across..across+across-size on the other
   ;; axis: where it stops, or #f when no solid tile is in its way.
   (define (tile-stop v pos size across across-size swept tile tile-across grid)
-    (let-values (((l0 l1) (entity-cell-span pos size tile))
-                 ((s0 s1) (if swept
-                              (entity-cell-span (- pos v) size tile)
-                              (values #f #f)))
-                 ((c0 c1) (entity-cell-span across across-size tile-across)))
-      ;; swept: from the line the leading edge was in before the move. Only
-      ;; the leading edge counts, so a body leaving a wall it touched is not
-      ;; caught by that wall when pos - v rounds (flonums) to just inside it.
-      ;; (A zero-size body on a tile edge covers no line: its leading line is
-      ;; the one it moves into.)
+    ;; swept: from the line the leading edge was in before the move. Only
+    ;; the leading edge counts, so a body leaving a wall it touched is not
+    ;; caught by that wall when pos - v rounds (flonums) to just inside it.
+    ;; (A zero-size body on a tile edge covers no line: its leading line is
+    ;; the one it moves into.)
+    (let ((l0 (span-first pos tile)) (l1 (span-last pos size tile))
+          (c0 (span-first across tile-across)) (c1 (span-last across across-size tile-across))
+          (start (and swept (- pos v))))
       (let ((line (if (> v 0)
-                      (nearest-solid-line grid (if swept (min (max s0 s1) l0) l0) l1 1 c0 c1)
-                      (nearest-solid-line grid (if swept (max (min s0 s1) l1) l1) l0 -1 c0 c1))))
+                      (nearest-solid-line grid
+                                          (if swept
+                                              (min (max (span-first start tile) (span-last start size tile)) l0)
+                                              l0)
+                                          l1 1 c0 c1)
+                      (nearest-solid-line grid
+                                          (if swept
+                                              (max (min (span-first start tile) (span-last start size tile)) l1)
+                                              l1)
+                                          l0 -1 c0 c1))))
         (and line (tile-push-pos v line tile size)))))
 
   ;; Both tile passes: pos-key is the axis resolved, across-key the other.
@@ -266,15 +279,9 @@
       (if (and skipp (cdr skipp) (not (null? (cdr skipp))))
           (chain-motion scene e dt)
           (let ((grav (and gp (cdr gp)))
-                (tm (scene-tilemap scene))
-                (sets '()))                  ; (value . key) ..., the last set first
+                (tm (scene-tilemap scene)))
             (define (read p key)
               (if p (let ((v (cdr p))) (if (fixnum? v) v (check-entity-number e key v))) 0))
-            ;; what the six steps would write: a present key only when its
-            ;; value changes, an absent key always (the steps add it)
-            (define (put! key p v)
-              (unless (and p (eqv? (cdr p) v))
-                (set! sets (cons (cons v key) sets))))
             (let* ((ay (and grav (read ayp #:ay)))
                    (accelerate? (and grav (not (and (eq? ay 0) ayp))))
                    (vy0 (and grav (read vyp #:vy)))
@@ -295,21 +302,43 @@
                                 (tile-stop vy y1 (read hp #:height) x2 (read wp #:width)
                                            swept (tilemap-tile-height tm) (tilemap-tile-width tm)
                                            (row-grid tm)))))
-              ;; each key once, with its final value, in the order the steps
-              ;; first write it (that order places keys the entity lacks)
-              (when grav
-                (put! #:vy vyp (if y-stop 0 vy2))
-                (when accelerate? (put! #:ay ayp 0)))
-              (put! #:x xp x2)
-              (when x-stop (put! #:vx vxp 0))
-              (put! #:y yp (or y-stop y1))
-              (when (and y-stop (not grav)) (put! #:vy vyp 0))
-              (if (null? sets)
-                  e
-                  (apply entity-set* e (let flat ((sets sets) (out '()))
-                                         (if (null? sets)
-                                             out
-                                             (flat (cdr sets) (cons (cdar sets) (cons (caar sets) out))))))))))))
+              ;; What the six steps write, each key with its final value, or
+              ;; `keep` for a key they do not write or that keeps its value.
+              (define (final p v) (if (and p (eqv? (cdr p) v)) keep v))
+              (rewrite-motion e grav
+                              xp (final xp x2)
+                              yp (final yp (or y-stop y1))
+                              vxp (if x-stop (final vxp 0) keep)
+                              vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy2)) (else keep))
+                              ayp (if accelerate? (final ayp 0) keep)))))))
+
+  (define keep (list 'keep))
+
+  ;; The entity with the motion keys written: a present key is replaced
+  ;; where it is, in a copy that stops after the last one (the rest is
+  ;; shared); an absent key goes in front, in the order the steps would add
+  ;; them (with gravity vy, ay, x, vx, y; without x, vx, y, vy).
+  (define (rewrite-motion e grav xp x yp y vxp vx vyp vy ayp ay)
+    (define (replaced? p v) (and p (not (eq? v keep))))
+    (define (added? p v) (and (not p) (not (eq? v keep))))
+    (let* ((n (fx+ (fx+ (if (replaced? xp x) 1 0) (if (replaced? yp y) 1 0))
+                   (fx+ (fx+ (if (replaced? vxp vx) 1 0) (if (replaced? vyp vy) 1 0))
+                        (if (replaced? ayp ay) 1 0))))
+           (copy (let copy ((rest e) (n n))
+                   (if (fx= n 0)
+                       rest
+                       (let ((p (car rest)))
+                         (cond ((not (pair? p)) (cons p (copy (cdr rest) n)))
+                               ((and (eq? p xp) (replaced? xp x)) (cons (cons #:x x) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p yp) (replaced? yp y)) (cons (cons #:y y) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p vxp) (replaced? vxp vx)) (cons (cons #:vx vx) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p vyp) (replaced? vyp vy)) (cons (cons #:vy vy) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p ayp) (replaced? ayp ay)) (cons (cons #:ay ay) (copy (cdr rest) (fx- n 1))))
+                               (else (cons p (copy (cdr rest) n))))))))
+           (add (lambda (p v key out) (if (added? p v) (cons (cons key v) out) out))))
+      (if grav
+          (add yp y #:y (add vxp vx #:vx (add xp x #:x (add ayp ay #:ay (add vyp vy #:vy copy)))))
+          (add vyp vy #:vy (add yp y #:y (add vxp vx #:vx (add xp x #:x copy)))))))
 
   (define (chain-motion scene e dt)
     (let* ((e (apply-acceleration scene e dt))
@@ -327,7 +356,8 @@
 
   (define (tile-ground? tm x y w h)
     (let ((row (cell-of (+ y h 1) (tilemap-tile-height tm))))
-      (let-values (((c0 c1) (entity-cell-span x w (tilemap-tile-width tm))))
+      (let ((c0 (span-first x (tilemap-tile-width tm)))
+            (c1 (span-last x w (tilemap-tile-width tm))))
         (or (tilemap-solid? tm c0 row)
             (tilemap-solid? tm (max c0 c1) row)))))
 

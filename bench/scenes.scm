@@ -241,6 +241,8 @@
 (define runs (string->number (flag-value "--runs" "3")))
 (define csv-file (flag-value "--csv" "bench/results.csv"))
 (define quick? (member "--quick" args))
+;; --mode M keeps only that collision mode of S1.
+(define only-mode (let ((m (flag-value "--mode" #f))) (and m (string->symbol m))))
 ;; --n N keeps only that size of S1 and S2 (and the step table's size).
 (define only-n (let ((n (flag-value "--n" #f))) (and n (string->number n))))
 (define (sizes ns) (if only-n (if (memv only-n ns) (list only-n) '()) ns))
@@ -257,7 +259,7 @@
   (for-each (lambda (mode)
               (for-each (lambda (n) (run-s1 n mode runs))
                         (sizes (if quick? '(100 1000) '(100 1000 10000)))))
-            '(discrete swept)))
+            (if only-mode (list only-mode) '(discrete swept))))
 (when (wanted? "steps")
   (run-s1-steps (or only-n (if quick? 1000 10000)) runs))
 (when (wanted? "S2")
