@@ -8,42 +8,104 @@
 ;;; many frames it lives.
 
 (module (downstroke entity)
-  (entity-ref entity-set entity-update entity-remove
+  (entity-ref entity-set entity-set* entity-update entity-remove entity-let
    make-entity plist->entity entity->plist as-entity entity?
    entity-type entity-tags entity-has-tag? entity-label
    entity-skips-pipeline? define-pipeline
    entity-number check-entity-number)
 
-  (import scheme (chicken base) (chicken keyword) (chicken format))
+  (import scheme (chicken base) (chicken keyword) (chicken format) (chicken fixnum))
 
   (define (entity-ref e key #!optional (default #f))
     (let ((p (assq key e)))
       (if p (cdr p) default)))
 
   ;; Copy the pairs before `key`, replace its pair, share the tail.
-  ;; A key not present yet is added at the front.
+  ;; A key not present yet is added at the front (and nothing is copied).
   (define (entity-set e key value)
-    (let loop ((rest e) (before '()))
+    (let find ((rest e) (n 0))
       (cond ((null? rest) (cons (cons key value) e))
             ((eq? (caar rest) key)
-             (let rebuild ((before before) (out (cons (cons key value) (cdr rest))))
-               (if (null? before)
-                   out
-                   (rebuild (cdr before) (cons (car before) out)))))
-            (else (loop (cdr rest) (cons (car rest) before))))))
+             (let copy ((e e) (n n))
+               (if (fx= n 0)
+                   (cons (cons key value) (cdr e))
+                   (cons (car e) (copy (cdr e) (fx- n 1))))))
+            (else (find (cdr rest) (fx+ n 1))))))
+
+  ;; e with its first n+1 pairs copied, the ones whose key is in the plist
+  ;; `kvs` holding their new value; the rest of e is shared.
+  (define (copy-replacing e n kvs)
+    (if (fx< n 0)
+        e
+        (let ((p (car e)))
+          (cons (let ((kv (last-setting (car p) kvs))) (if kv (cons (car p) (cadr kv)) p))
+                (copy-replacing (cdr e) (fx- n 1) kvs)))))
+
+  ;; The tail of the plist kvs at the last setting of key, or #f.
+  (define (last-setting key kvs)
+    (let loop ((kvs kvs) (found #f))
+      (cond ((null? kvs) found)
+            ((eq? (car kvs) key) (loop (cddr kvs) kvs))
+            (else (loop (cddr kvs) found)))))
+
+  ;; (entity-set* e k1 v1 k2 v2 ...) is (entity-set (entity-set e k1 v1) k2 v2)
+  ;; ..., with one walk and one copy: present keys are replaced where they
+  ;; are, absent ones go in front, the last one set first.
+  (define (entity-set* e . kvs)
+    (let find ((rest e) (n 0) (last -1) (found 0))
+      (if (pair? rest)
+          (if (last-setting (caar rest) kvs)
+              (find (cdr rest) (fx+ n 1) n (fx+ found 1))
+              (find (cdr rest) (fx+ n 1) last found))
+          (let ((copy (copy-replacing e last kvs)))
+            (if (fx= found (distinct-keys kvs))
+                copy
+                (let add ((ks kvs) (out copy))
+                  (cond ((null? ks) out)
+                        ((or (assq (car ks) e) (assq (car ks) out)) (add (cddr ks) out))
+                        (else (add (cddr ks)
+                                   (cons (cons (car ks) (cadr (last-setting (car ks) kvs)))
+                                         out))))))))))
+
+  ;; How many different keys the plist kvs sets.
+  (define (distinct-keys kvs)
+    (let loop ((ks kvs) (n 0))
+      (cond ((null? ks) n)
+            ((eq? (last-setting (car ks) kvs) ks) (loop (cddr ks) (fx+ n 1)))
+            (else (loop (cddr ks) n)))))
+
+  ;; (entity-let e ((var key) ...) body ...) binds each var to e's pair for
+  ;; key, or #f when e has no such key: one walk of e for all of them. The
+  ;; walk carries the pairs found as loop arguments, so nothing is boxed.
+  (define-syntax entity-let
+    (syntax-rules ()
+      ((_ e ((var key) ...) body0 body ...)
+       (%entity-let (walk rest p k) e (var ...) () ((var key) ...) () (body0 body ...)))))
+
+  ;; Builds one cond clause per key: (eq? k key) passes p in that key's place.
+  (define-syntax %entity-let
+    (syntax-rules ()
+      ((_ (walk rest p k) e (var ...) done () (clause ...) (body ...))
+       (let walk ((rest e) (var #f) ...)
+         (if (pair? rest)
+             (let* ((p (car rest)) (k (car p)))
+               (cond clause ... (else (walk (cdr rest) var ...))))
+             (let () body ...))))
+      ((_ (walk rest p k) e vars (done ...) ((v key) (rv rk) ...) (clause ...) bodies)
+       (%entity-let (walk rest p k) e vars (done ... v) ((rv rk) ...)
+                    (clause ... ((eq? k key) (walk (cdr rest) done ... (or v p) rv ...)))
+                    bodies))))
 
   (define (entity-update e key proc #!optional (default #f))
     (entity-set e key (proc (entity-ref e key default))))
 
   (define (entity-remove e key)
-    (let loop ((rest e) (before '()))
+    (let find ((rest e) (n 0))
       (cond ((null? rest) e)
             ((eq? (caar rest) key)
-             (let rebuild ((before before) (out (cdr rest)))
-               (if (null? before)
-                   out
-                   (rebuild (cdr before) (cons (car before) out)))))
-            (else (loop (cdr rest) (cons (car rest) before))))))
+             (let copy ((e e) (n n))
+               (if (fx= n 0) (cdr e) (cons (car e) (copy (cdr e) (fx- n 1))))))
+            (else (find (cdr rest) (fx+ n 1))))))
 
   (define (make-entity x y w h)
     (list (cons #:x x) (cons #:y y) (cons #:width w) (cons #:height h)

@@ -10,7 +10,7 @@
 
 (module (downstroke physics)
   (apply-acceleration apply-gravity apply-velocity-x resolve-tile-collisions-x
-   apply-velocity-y resolve-tile-collisions-y detect-on-solid
+   apply-velocity-y resolve-tile-collisions-y step-motion detect-on-solid
    resolve-entity-collisions sync-groups
    aabb-overlap? entity-tile-cells entity-cell-span tile-push-pos
    entity-solid-support-below? tile-support-below? resolve-pair push-apart
@@ -69,10 +69,17 @@
   ;; cover that tile. A zero-size span on a tile edge covers no cell (last <
   ;; first); elsewhere it covers the one cell it lies in.
   (define (entity-cell-span pos size tile)
+    (values (span-first pos tile) (span-last pos size tile)))
+
+  (define (span-first pos tile)
+    (if (exact-integer? pos)
+        (floor-div pos tile)
+        (->integer (floor (/ pos tile)))))
+
+  (define (span-last pos size tile)
     (if (and (exact-integer? pos) (exact-integer? size))
-        (values (floor-div pos tile) (floor-div (+ pos size -1) tile))
-        (values (->integer (floor (/ pos tile)))
-                (- (->integer (ceiling (/ (+ pos size) tile))) 1))))
+        (floor-div (+ pos size -1) tile)
+        (- (->integer (ceiling (/ (+ pos size) tile))) 1)))
 
   ;; Every (col . row) cell the entity's AABB covers, row by row.
   (define (entity-tile-cells entity tilemap)
@@ -132,15 +139,26 @@
                          (else (next-cell (fx+ cell 1)))))))))))
 
   ;; The solid grid of a map, walked by columns (the x pass) or rows (y).
-  (define (column-grid tm)
-    (make-axis-grid (tilemap-solid-grid tm) 1 (tilemap-width tm)
-                    (tilemap-origin-col tm) (tilemap-origin-row tm)
-                    (tilemap-width tm) (tilemap-height tm)))
+  ;; Every body of a frame asks about the same map: the views of the last
+  ;; map asked about are kept (a tilemap is immutable, and its solid grid
+  ;; is made once).
+  (define last-grids (cons #f #f))      ; (tilemap . #(columns rows))
 
-  (define (row-grid tm)
-    (make-axis-grid (tilemap-solid-grid tm) (tilemap-width tm) 1
-                    (tilemap-origin-row tm) (tilemap-origin-col tm)
-                    (tilemap-height tm) (tilemap-width tm)))
+  (define (grids tm)
+    (if (and (eq? (car last-grids) tm) (eq? (tilemap-solid-grid tm) (grid-bytes (vector-ref (cdr last-grids) 0))))
+        (cdr last-grids)
+        (let ((bytes (tilemap-solid-grid tm)))
+          (let ((v (vector (make-axis-grid bytes 1 (tilemap-width tm)
+                                           (tilemap-origin-col tm) (tilemap-origin-row tm)
+                                           (tilemap-width tm) (tilemap-height tm))
+                           (make-axis-grid bytes (tilemap-width tm) 1
+                                           (tilemap-origin-row tm) (tilemap-origin-col tm)
+                                           (tilemap-height tm) (tilemap-width tm)))))
+            (set! last-grids (cons tm v))
+            v))))
+
+  (define (column-grid tm) (vector-ref (grids tm) 0))
+  (define (row-grid tm) (vector-ref (grids tm) 1))
 
   ;;; Per-entity steps, in pipeline order
 
@@ -169,12 +187,16 @@
   ;;             is passed at any speed. Wherever the discrete step does not
   ;;             pass a wall, both give the same result.
   (define (swept? scene entity)
-    (case (or (entity-ref entity #:collision-mode #f) (scene-collision-mode scene))
+    (swept-mode? scene entity (entity-ref entity #:collision-mode #f)))
+
+  ;; `own` is the entity's #:collision-mode value (#f when it has none).
+  (define (swept-mode? scene entity own)
+    (case (or own (scene-collision-mode scene))
       ((swept) #t)
       ((discrete) #f)
       (else (error 'downstroke
                    (sprintf "entity ~a: #:collision-mode is ~s, not discrete or swept"
-                            (entity-label entity) (entity-ref entity #:collision-mode #f))))))
+                            (entity-label entity) own)))))
 
   ;; The discrete step cannot pass a wall one tile thick while the body moves
   ;; less than its own size plus a tile per frame on that axis: some cell it
@@ -194,6 +216,31 @@
                (>= (abs (num entity #:vy))
                    (discrete-safe-speed (num entity #:height) (tilemap-tile-height tm)))))))
 
+  ;; One tile pass on one axis, for a body at `pos` of `size` that moved by
+  ;; v (not 0) this frame, spanning across..across+across-size on the other
+  ;; axis: where it stops, or #f when no solid tile is in its way.
+  (define (tile-stop v pos size across across-size swept tile tile-across grid)
+    ;; swept: from the line the leading edge was in before the move. Only
+    ;; the leading edge counts, so a body leaving a wall it touched is not
+    ;; caught by that wall when pos - v rounds (flonums) to just inside it.
+    ;; (A zero-size body on a tile edge covers no line: its leading line is
+    ;; the one it moves into.)
+    (let ((l0 (span-first pos tile)) (l1 (span-last pos size tile))
+          (c0 (span-first across tile-across)) (c1 (span-last across across-size tile-across))
+          (start (and swept (- pos v))))
+      (let ((line (if (> v 0)
+                      (nearest-solid-line grid
+                                          (if swept
+                                              (min (max (span-first start tile) (span-last start size tile)) l0)
+                                              l0)
+                                          l1 1 c0 c1)
+                      (nearest-solid-line grid
+                                          (if swept
+                                              (max (min (span-first start tile) (span-last start size tile)) l1)
+                                              l1)
+                                          l0 -1 c0 c1))))
+        (and line (tile-push-pos v line tile size)))))
+
   ;; Both tile passes: pos-key is the axis resolved, across-key the other.
   ;; A velocity of 0 snaps nothing.
   (define (resolve-tiles entity swept pos-key size-key vel-key across-key across-size-key
@@ -201,21 +248,12 @@
     (let ((v (num entity vel-key)))
       (if (zero? v)
           entity
-          (let ((pos (num entity pos-key)) (size (num entity size-key)))
-            (let-values (((l0 l1) (entity-cell-span pos size tile))
-                         ((s0 s1) (if swept
-                                      (entity-cell-span (- pos v) size tile)
-                                      (values #f #f)))
-                         ((c0 c1) (entity-cell-span (num entity across-key)
-                                                    (num entity across-size-key)
-                                                    tile-across)))
-              (let ((line (if (> v 0)
-                              (nearest-solid-line grid (if swept (min s0 l0) l0) l1 1 c0 c1)
-                              (nearest-solid-line grid (if swept (max s1 l1) l1) l0 -1 c0 c1))))
-                (if (not line)
-                    entity
-                    (entity-set (entity-set entity pos-key (tile-push-pos v line tile size))
-                                vel-key 0))))))))
+          (let ((stop (tile-stop v (num entity pos-key) (num entity size-key)
+                                 (num entity across-key) (num entity across-size-key)
+                                 swept tile tile-across grid)))
+            (if stop
+                (entity-set* entity pos-key stop vel-key 0)
+                entity)))))
 
   (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
     guard: (scene-tilemap scene)
@@ -229,15 +267,97 @@
       (resolve-tiles entity (swept? scene entity) #:y #:height #:vy #:x #:width
                      (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm))))
 
-  ;; Tile ground: the row one pixel below the feet, (+ y h 1), under either
+;; Steps 2-7 of the contract (acceleration, gravity, velocity x, tile
+  ;; collisions x, velocity y, tile collisions y) for one entity, giving
+  ;; exactly what running those six steps one after the other gives (a
+  ;; property test compares the two), with one walk of the entity to read it
+  ;; and one copy to write it. An entity that switches steps off with
+  ;; #:skip-pipelines takes the six steps one by one.
+  (define (step-motion scene e dt)
+    (entity-let e ((xp #:x) (yp #:y) (wp #:width) (hp #:height) (vxp #:vx) (vyp #:vy)
+                   (ayp #:ay) (gp #:gravity?) (skipp #:skip-pipelines) (modep #:collision-mode))
+      (if (and skipp (cdr skipp) (not (null? (cdr skipp))))
+          (chain-motion scene e dt)
+          (let ((grav (and gp (cdr gp)))
+                (tm (scene-tilemap scene)))
+            (define (read p key)
+              (if p (let ((v (cdr p))) (if (fixnum? v) v (check-entity-number e key v))) 0))
+            (let* ((ay (and grav (read ayp #:ay)))
+                   (accelerate? (and grav (not (and (eq? ay 0) ayp))))
+                   (vy0 (and grav (read vyp #:vy)))
+                   (vy1 (if accelerate? (+ vy0 ay) vy0))
+                   (vy2 (and grav (+ vy1 *gravity*)))
+                   (x0 (read xp #:x))
+                   (vx (read vxp #:vx))
+                   (x1 (+ x0 vx))
+                   (swept (and tm (swept-mode? scene e (and modep (cdr modep)))))
+                   (x-stop (and tm (not (zero? vx))
+                                (tile-stop vx x1 (read wp #:width) (read yp #:y) (read hp #:height)
+                                           swept (tilemap-tile-width tm) (tilemap-tile-height tm)
+                                           (column-grid tm))))
+                   (x2 (or x-stop x1))
+                   (vy (if grav vy2 (read vyp #:vy)))
+                   (y1 (+ (read yp #:y) vy))
+                   (y-stop (and tm (not (zero? vy))
+                                (tile-stop vy y1 (read hp #:height) x2 (read wp #:width)
+                                           swept (tilemap-tile-height tm) (tilemap-tile-width tm)
+                                           (row-grid tm)))))
+              ;; What the six steps write, each key with its final value, or
+              ;; `keep` for a key they do not write or that keeps its value.
+              (define (final p v) (if (and p (eqv? (cdr p) v)) keep v))
+              (rewrite-motion e grav
+                              xp (final xp x2)
+                              yp (final yp (or y-stop y1))
+                              vxp (if x-stop (final vxp 0) keep)
+                              vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy2)) (else keep))
+                              ayp (if accelerate? (final ayp 0) keep)))))))
+
+  (define keep (list 'keep))
+
+  ;; The entity with the motion keys written: a present key is replaced
+  ;; where it is, in a copy that stops after the last one (the rest is
+  ;; shared); an absent key goes in front, in the order the steps would add
+  ;; them (with gravity vy, ay, x, vx, y; without x, vx, y, vy).
+  (define (rewrite-motion e grav xp x yp y vxp vx vyp vy ayp ay)
+    (define (replaced? p v) (and p (not (eq? v keep))))
+    (define (added? p v) (and (not p) (not (eq? v keep))))
+    (let* ((n (fx+ (fx+ (if (replaced? xp x) 1 0) (if (replaced? yp y) 1 0))
+                   (fx+ (fx+ (if (replaced? vxp vx) 1 0) (if (replaced? vyp vy) 1 0))
+                        (if (replaced? ayp ay) 1 0))))
+           (copy (let copy ((rest e) (n n))
+                   (if (fx= n 0)
+                       rest
+                       (let ((p (car rest)))
+                         (cond ((not (pair? p)) (cons p (copy (cdr rest) n)))
+                               ((and (eq? p xp) (replaced? xp x)) (cons (cons #:x x) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p yp) (replaced? yp y)) (cons (cons #:y y) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p vxp) (replaced? vxp vx)) (cons (cons #:vx vx) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p vyp) (replaced? vyp vy)) (cons (cons #:vy vy) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p ayp) (replaced? ayp ay)) (cons (cons #:ay ay) (copy (cdr rest) (fx- n 1))))
+                               (else (cons p (copy (cdr rest) n))))))))
+           (add (lambda (p v key out) (if (added? p v) (cons (cons key v) out) out))))
+      (if grav
+          (add yp y #:y (add vxp vx #:vx (add xp x #:x (add ayp ay #:ay (add vyp vy #:vy copy)))))
+          (add vyp vy #:vy (add yp y #:y (add vxp vx #:vx (add xp x #:x copy)))))))
+
+  (define (chain-motion scene e dt)
+    (let* ((e (apply-acceleration scene e dt))
+           (e (apply-gravity scene e dt))
+           (e (apply-velocity-x scene e dt))
+           (e (resolve-tile-collisions-x scene e dt))
+           (e (apply-velocity-y scene e dt)))
+      (resolve-tile-collisions-y scene e dt)))
+
+;; Tile ground: the row one pixel below the feet, (+ y h 1), under either
   ;; lower corner. The corners are the first and last columns the body
   ;; covers; a zero-width body on a tile edge probes the one column at x.
   (define (tile-support-below? entity tm)
-    (let* ((x (num entity #:x)) (w (num entity #:width))
-           (tw (tilemap-tile-width tm))
-           (row (cell-of (+ (num entity #:y) (num entity #:height) 1)
-                         (tilemap-tile-height tm))))
-      (let-values (((c0 c1) (entity-cell-span x w tw)))
+    (tile-ground? tm (num entity #:x) (num entity #:y) (num entity #:width) (num entity #:height)))
+
+  (define (tile-ground? tm x y w h)
+    (let ((row (cell-of (+ y h 1) (tilemap-tile-height tm))))
+      (let ((c0 (span-first x (tilemap-tile-width tm)))
+            (c1 (span-last x w (tilemap-tile-width tm))))
         (or (tilemap-solid? tm c0 row)
             (tilemap-solid? tm (max c0 c1) row)))))
 
@@ -246,29 +366,42 @@
   ;; bottom, while the mover's |vy| is within *entity-ground-vy-max*.
   ;; "Other" means not the same object (eq?), as the pipeline passes them.
   (define (entity-solid-support-below? entity solids)
-    (let* ((x (num entity #:x)) (w (num entity #:width))
-           (bottom (+ (num entity #:y) (num entity #:height))))
-      (and (<= (abs (num entity #:vy)) *entity-ground-vy-max*)
-           (let loop ((solids solids))
-             (and (pair? solids)
-                  (let ((s (car solids)))
-                    (or (and (not (eq? s entity))
-                             (entity-ref s #:solid? #f)
-                             (< x (+ (num s #:x) (num s #:width)))
-                             (< (num s #:x) (+ x w))
-                             (<= (abs (- (num s #:y) bottom))
-                                 *entity-ground-contact-tolerance*))
-                        (loop (cdr solids)))))))))
+    (entity-ground? entity solids (num entity #:x) (num entity #:width)
+                    (+ (num entity #:y) (num entity #:height)) (num entity #:vy)))
 
-  (define-pipeline (detect-on-solid on-solid) (scene entity dt)
-    guard: (entity-ref entity #:gravity? #f)
-    (let* ((tm (scene-tilemap scene))
-           (ground? (or (and tm (tile-support-below? entity tm))
-                        (entity-solid-support-below? entity (scene-solid-entities scene)))))
-      (let ((known (assq #:on-ground? entity)))
-        (if (and known (eq? (cdr known) ground?))
-            entity
-            (entity-set entity #:on-ground? ground?)))))
+  (define (entity-ground? entity solids x w bottom vy)
+    (and (pair? solids)
+         (<= (abs vy) *entity-ground-vy-max*)
+         (let loop ((solids solids))
+           (and (pair? solids)
+                (let ((s (car solids)))
+                  (or (and (not (eq? s entity))
+                           (entity-ref s #:solid? #f)
+                           (< x (+ (num s #:x) (num s #:width)))
+                           (< (num s #:x) (+ x w))
+                           (<= (abs (- (num s #:y) bottom))
+                               *entity-ground-contact-tolerance*))
+                      (loop (cdr solids))))))))
+
+  ;; The contract's ground detection, reading the entity in one walk.
+  (define (detect-on-solid scene entity dt)
+    (entity-let entity ((gp #:gravity?) (skipp #:skip-pipelines) (known #:on-ground?)
+                        (xp #:x) (yp #:y) (wp #:width) (hp #:height) (vyp #:vy))
+      (if (and gp (cdr gp)
+               (not (and skipp (cdr skipp) (memq 'on-solid (cdr skipp)))))
+          (let* ((read (lambda (p key)
+                         (if p (let ((v (cdr p))) (if (fixnum? v) v (check-entity-number entity key v))) 0)))
+                 (tm (scene-tilemap scene))
+                 (ground? (or (and tm (tile-ground? tm (read xp #:x) (read yp #:y)
+                                                    (read wp #:width) (read hp #:height)))
+                              (entity-ground? entity (scene-solid-entities scene)
+                                              (read xp #:x) (read wp #:width)
+                                              (+ (read yp #:y) (read hp #:height))
+                                              (read vyp #:vy)))))
+            (if (and known (eq? (cdr known) ground?))
+                entity
+                (entity-set entity #:on-ground? ground?)))
+          entity)))
 
   ;;; Entity against entity
 

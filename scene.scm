@@ -58,7 +58,8 @@
   (define (check-entities entities)
     (unless (list? entities)
       (error 'make-scene "entities: must be a list of entities" entities))
-    (map as-entity entities))
+    ;; alists come back as they are, so the list is shared, not copied
+    (map/shared as-entity entities))
 
   ;; How tile collisions are resolved unless a scene or an entity says
   ;; otherwise (see physics.scm and docs/physics.org).

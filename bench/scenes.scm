@@ -2,7 +2,7 @@
 ;;; Prints a table, the checksum lines the spec asks for, and writes one CSV
 ;;; row per (scene, mode, n or speed):
 ;;;   scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct
-;;; Usage: bench [--runs R] [--csv FILE] [--quick] [S1 S2 S3 ...]
+;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [S1 S2 S3 steps ...]
 
 (import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
         (chicken string) (chicken sort)
@@ -241,6 +241,11 @@
 (define runs (string->number (flag-value "--runs" "3")))
 (define csv-file (flag-value "--csv" "bench/results.csv"))
 (define quick? (member "--quick" args))
+;; --mode M keeps only that collision mode of S1.
+(define only-mode (let ((m (flag-value "--mode" #f))) (and m (string->symbol m))))
+;; --n N keeps only that size of S1 and S2 (and the step table's size).
+(define only-n (let ((n (flag-value "--n" #f))) (and n (string->number n))))
+(define (sizes ns) (if only-n (if (memv only-n ns) (list only-n) '()) ns))
 (define (wanted? s)
   (let ((named (filter-scenes args)))
     (or (null? named) (member s named))))
@@ -253,14 +258,14 @@
 (when (wanted? "S1")
   (for-each (lambda (mode)
               (for-each (lambda (n) (run-s1 n mode runs))
-                        (if quick? '(100 1000) '(100 1000 10000))))
-            '(discrete swept)))
+                        (sizes (if quick? '(100 1000) '(100 1000 10000)))))
+            (if only-mode (list only-mode) '(discrete swept))))
 (when (wanted? "steps")
-  (run-s1-steps (if quick? 1000 10000) runs))
+  (run-s1-steps (or only-n (if quick? 1000 10000)) runs))
 (when (wanted? "S2")
   ;; all pairs is quadratic: 5000 would take minutes a frame
-  (for-each (lambda (n) (run-s2 n 'all-pairs runs)) (if quick? '(100) '(100 1000)))
-  (for-each (lambda (n) (run-s2 n 'spatial-hash runs)) (if quick? '(100) '(100 1000 5000))))
+  (for-each (lambda (n) (run-s2 n 'all-pairs runs)) (sizes (if quick? '(100) '(100 1000))))
+  (for-each (lambda (n) (run-s2 n 'spatial-hash runs)) (sizes (if quick? '(100) '(100 1000 5000)))))
 (when (wanted? "S3")
   (for-each (lambda (mode)
               (for-each (lambda (v) (run-s3 v mode runs))

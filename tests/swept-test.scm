@@ -33,9 +33,13 @@
 ;; The line (tile column for x, row for y) of the first solid tile met by a
 ;; body whose span moves from [pos0, pos0+size) to [pos1, pos1+size), pixel
 ;; by pixel; #f if none. `lo`..`hi` is the body's span on the other axis.
+;; What it meets: every pixel its leading edge crosses, and every pixel it
+;; covers at the end (a wall it only leaves behind does not stop it).
 (define (sw-first-wall tm axis pos0 pos1 size lo hi)
   (let ((step (if (> pos1 pos0) 1 -1)))
-    (let loop ((p (if (> step 0) pos0 (+ pos0 size -1))))
+    (let loop ((p (if (> step 0)
+                      (min (+ pos0 size -1) pos1)
+                      (max pos0 (+ pos1 size -1)))))
       (let ((line (floor (/ p 16))))
         (cond ((if (> step 0) (>= p (+ pos1 size)) (< p pos1)) #f)
               ((sw-solid-line? tm axis line lo hi) line)
@@ -107,6 +111,25 @@
    '(1 8 16 27 28 29 40 64 200 1000 1000000))
   (test "discrete holds at 27 px/frame" '(4788 0) (final-x 'discrete 16 27))
   (test-assert "discrete passes the wall at 1000 px/frame" (>= (car (final-x 'discrete 16 1000)) 4816)))
+
+(test-group "swept: leaving a wall with a flonum speed"
+  ;; pos - v rounds: 256 + 1.383 - 1.383 is not 256 in flonums, and the
+  ;; start computed from it lies just inside the wall the body touched.
+  (let* ((tm (list->tilemap (list (let cols ((i 0)) (if (= i 40) '() (cons (if (= i 15) 1 0) (cols (+ i 1))))))))
+         (scene (make-scene tilemap: tm collision-mode: 'swept))
+         (move (lambda (e) (resolve-tile-collisions-x scene (apply-velocity-x scene e 16) 16))))
+    (test "a box touching the wall's right face moves away from it" (+ 256 1.383)
+          (entity-ref (move (sw-ent #:x 256 #:y 0 #:width 8 #:height 8 #:vx 1.383)) #:x))
+    (test "a box touching its left face moves away from it" (- 232 1.383)
+          (entity-ref (move (sw-ent #:x 232 #:y 0 #:width 8 #:height 8 #:vx -1.383)) #:x))
+    ;; many flonum speeds, from both faces: never on the far side
+    (let loop ((k 1) (wrong 0))
+      (if (> k 2000)
+          (test "2000 flonum speeds away from both faces: none crosses the wall" 0 wrong)
+          (let* ((v (+ 0.001 (* k 0.0137)))
+                 (right (entity-ref (move (sw-ent #:x 256 #:y 0 #:width 8 #:height 8 #:vx v)) #:x))
+                 (left (entity-ref (move (sw-ent #:x 232 #:y 0 #:width 8 #:height 8 #:vx (- v))) #:x)))
+            (loop (+ k 1) (+ wrong (if (< right 256) 1 0) (if (> left 232) 1 0))))))))
 
 (test-group "collision mode selection"
   (let* ((tm (list->tilemap '((0 0 0 1 0 0 0 0))))

@@ -1,0 +1,174 @@
+;;; The fast paths of the default pipeline give exactly what the contract's
+;;; steps give when run one by one:
+;;;   - step-motion (one walk, one copy) against acceleration, gravity,
+;;;     velocity x, tile x, velocity y, tile y in turn;
+;;;   - engine-pipeline, which skips the steps no entity needs, against
+;;;     every step run over every entity;
+;;;   - entity-set* against repeated entity-set.
+;;; Compared with equal? (same keys, same order, same values) on random
+;;; entities: keys present or not, fixnums, exact rationals and flonums,
+;;; skip lists, per-entity collision modes, solids, groups, tweens and
+;;; animations.
+
+(import scheme (chicken base) (chicken condition) (downstroke test)
+        (downstroke entity) (downstroke tilemap) (downstroke scene) (downstroke physics)
+        (downstroke tween) (downstroke animation) (downstroke engine))
+
+(define pl-seed 4242)
+(define (pl-rand n)
+  (set! pl-seed (modulo (+ (* 1103515245 pl-seed) 12345) 2147483648))
+  (modulo (quotient pl-seed 7) n))
+(define (pl-chance percent) (< (pl-rand 100) percent))
+(define (pl-pick . xs) (list-ref xs (pl-rand (length xs))))
+
+(define (pl-number range)
+  (let ((n (- (pl-rand (* 2 range)) range)))
+    (case (pl-rand 4)
+      ((0 1) n)
+      ((2) (/ n (pl-pick 2 3 4 10)))
+      (else (+ n (/ (pl-rand 1000) 1000.0))))))
+
+(define (pl-map)
+  (list->tilemap
+   (let rows ((j 0))
+     (if (= j 12) '()
+         (cons (let cols ((i 0))
+                 (if (= i 12) '() (cons (if (or (= j 11) (pl-chance 15)) 1 0) (cols (+ i 1)))))
+               (rows (+ j 1)))))))
+
+;; A random entity: every key appears only sometimes, in a random order.
+(define (pl-entity k)
+  (let* ((pairs
+          (list (and (pl-chance 95) (cons #:x (+ 40 (pl-number 60))))
+                (and (pl-chance 95) (cons #:y (+ 40 (pl-number 60))))
+                (and (pl-chance 90) (cons #:width (pl-pick 0 1 8 12 16 20 15/2 10.5)))
+                (and (pl-chance 90) (cons #:height (pl-pick 0 1 8 12 16 20 15/2 10.5)))
+                (and (pl-chance 85) (cons #:vx (pl-number 30)))
+                (and (pl-chance 85) (cons #:vy (pl-number 30)))
+                (and (pl-chance 50) (cons #:ay (pl-pick 0 0 -10 0.0 5/2)))
+                (and (pl-chance 60) (cons #:gravity? (pl-pick #t #f)))
+                (and (pl-chance 40) (cons #:on-ground? (pl-pick #t #f)))
+                (and (pl-chance 10) (cons #:skip-pipelines
+                                          (pl-pick '() '(gravity) '(velocity-x tile-collisions-y)
+                                                   '(acceleration on-solid) '(tile-collisions-x))))
+                (and (pl-chance 15) (cons #:collision-mode (pl-pick 'swept 'discrete)))
+                (and (pl-chance 25) (cons #:solid? (pl-pick #t #f)))
+                (and (pl-chance 8) (cons #:immovable? #t))
+                (and (pl-chance 10) (cons #:group-id (pl-pick 'a 'b)))
+                (and (pl-chance 5) (cons #:group-origin? #t))
+                (and (pl-chance 10) (cons #:group-local-x (pl-rand 20)))
+                (and (pl-chance 10)
+                     (cons #:animations
+                           (list (list (cons #:name 'walk) (cons #:frames '(1 2 3)) (cons #:duration 2)))))
+                (cons #:id k)))
+         (present (let loop ((ps pairs) (out '()))
+                    (cond ((null? ps) out)
+                          ((car ps) (loop (cdr ps) (cons (car ps) out)))
+                          (else (loop (cdr ps) out))))))
+    ;; shuffle by repeatedly taking a random element
+    (let shuffle ((ps present) (out '()))
+      (if (null? ps)
+          out
+          (let ((p (list-ref ps (pl-rand (length ps)))))
+            (shuffle (let drop ((ps ps)) (if (eq? (car ps) p) (cdr ps) (cons (car ps) (drop (cdr ps)))))
+                     (cons p out)))))))
+
+(define (pl-with-tween e)
+  (if (and (pl-chance 10) (entity-ref e #:x #f))
+      (entity-set e #:tween (make-tween e props: (list (cons #:x (+ 10 (entity-ref e #:x 0))))
+                                        duration: (pl-pick 16 48) ease: 'quad-in))
+      e))
+
+;; The result of (thunk), or the message of the error it raises.
+(define (pl-outcome thunk)
+  (handle-exceptions exn (list 'error ((condition-property-accessor 'exn 'message) exn))
+    (thunk)))
+
+(define (pl-six-steps scene e)
+  (let* ((e (apply-acceleration scene e 16))
+         (e (apply-gravity scene e 16))
+         (e (apply-velocity-x scene e 16))
+         (e (resolve-tile-collisions-x scene e 16))
+         (e (apply-velocity-y scene e 16)))
+    (resolve-tile-collisions-y scene e 16)))
+
+(test-group "step-motion is the six motion steps in one pass"
+  (let loop ((k 0) (same 0) (different 0) (changed 0) (first-difference #f))
+    (if (= k 6000)
+        (begin
+          (test "6000 random entities: identical results" 0 different)
+          (when first-difference (print "pipeline: first difference " first-difference))
+          (test-assert "most of them moved" (> changed 4000)))
+        (let* ((scene (make-scene tilemap: (if (pl-chance 85) (pl-map) #f)
+                                  collision-mode: (pl-pick 'swept 'discrete)))
+               (e (pl-entity k))
+               (fast (pl-outcome (lambda () (step-motion scene e 16))))
+               (slow (pl-outcome (lambda () (pl-six-steps scene e)))))
+          (if (equal? fast slow)
+              (loop (+ k 1) (+ same 1) different (if (equal? fast e) changed (+ changed 1)) first-difference)
+              (loop (+ k 1) same (+ different 1) changed
+                    (or first-difference (list e fast slow))))))))
+
+(test-group "step-motion checks numbers like the steps do"
+  (let ((scene (make-scene tilemap: (list->tilemap '((0 0) (1 1))))))
+    (test-error "a NaN x" (step-motion scene (plist->entity (list #:x +nan.0 #:y 0 #:vx 1)) 16))
+    (test "the error names the entity and the key"
+          "entity box: #:vy is +inf.0, not a finite real number"
+          (cadr (pl-outcome (lambda () (step-motion scene (plist->entity (list #:type 'box #:x 0 #:y 0 #:vy +inf.0)) 16)))))
+    (test "an entity that does not move comes back itself" #t
+          (let ((e (plist->entity (list #:x 0 #:y 0 #:vx 0 #:vy 0))))
+            (eq? e (step-motion scene e 16))))))
+
+;; Every step over every entity, as the contract lists them.
+(define (pl-reference-pipeline scene dt)
+  (let* ((each (lambda (step) (lambda (s) (scene-map-entities s (lambda (s e) (step s e dt))))))
+         (scene ((each step-tweens) scene))
+         (scene ((each apply-acceleration) scene))
+         (scene ((each apply-gravity) scene))
+         (scene ((each apply-velocity-x) scene))
+         (scene ((each resolve-tile-collisions-x) scene))
+         (scene ((each apply-velocity-y) scene))
+         (scene ((each resolve-tile-collisions-y) scene))
+         (scene ((each detect-on-solid) scene))
+         (scene (scene-transform-entities scene resolve-entity-collisions))
+         (scene (scene-transform-entities scene sync-groups)))
+    ((each apply-animation) scene)))
+
+(test-group "engine-pipeline skips only what no entity needs"
+  (let loop ((k 0) (different 0) (frames 0))
+    (if (= k 300)
+        (begin (test "300 random scenes, 10 frames each: identical entities" 0 different)
+               (test "every frame compared" 3000 frames))
+        (let* ((n (pl-pick 0 1 2 3 5 8 40))
+               (entities (let make ((i 0)) (if (= i n) '() (cons (pl-with-tween (pl-entity i)) (make (+ i 1))))))
+               (scene (make-scene tilemap: (if (pl-chance 80) (pl-map) #f)
+                                  collision-mode: (pl-pick 'swept 'discrete) entities: entities)))
+          (let frame ((f 0) (fast scene) (slow scene) (different different) (frames frames))
+            (if (= f 10)
+                (loop (+ k 1) different frames)
+                (let ((fast2 (pl-outcome (lambda () (engine-pipeline fast 16))))
+                      (slow2 (pl-outcome (lambda () (pl-reference-pipeline slow 16)))))
+                  (cond ((and (scene? fast2) (scene? slow2)
+                              (equal? (scene-entities fast2) (scene-entities slow2)))
+                         (frame (+ f 1) fast2 slow2 different (+ frames 1)))
+                        ((and (pair? fast2) (equal? fast2 slow2))
+                         ;; both raised the same error: the scene stops here
+                         (frame 10 fast slow different (+ frames (- 10 f))))
+                        (else (frame 10 fast slow (+ different 1) (+ frames (- 10 f))))))))))))
+
+(test-group "entity-set* is entity-set repeated"
+  (let loop ((k 0) (different 0))
+    (if (= k 3000)
+        (test "3000 random entities and settings" 0 different)
+        (let* ((e (pl-entity k))
+               (keys (list #:x #:vy #:ay #:tween #:x #:id #:width))
+               (kvs (let make ((i (pl-rand 6)))
+                      (if (= i 0) '() (cons (list-ref keys (pl-rand (length keys))) (cons i (make (- i 1)))))))
+               (slow (let set ((e e) (kvs kvs)) (if (null? kvs) e (set (entity-set e (car kvs) (cadr kvs)) (cddr kvs))))))
+          (loop (+ k 1) (if (equal? (apply entity-set* e kvs) slow) different (+ different 1))))))
+  (let ((e (list (cons #:a 1) (cons #:b 2) (cons #:c 3))))
+    (test "present keys keep their place, absent ones go first, the last set first"
+          (list (cons #:e 5) (cons #:d 4) (cons #:a 1) (cons #:b 20) (cons #:c 3))
+          (entity-set* e #:d 4 #:b 20 #:e 5))
+    (test "the tail after the last key set is shared" #t
+          (eq? (cddr e) (cddr (entity-set* e #:a 10 #:b 20))))))
