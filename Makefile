@@ -2,6 +2,7 @@
 #   make test    install what is missing, build, run every suite headless
 #   make demo    install what is missing, build, run the platformer demo
 #   make bench   the benchmark scenes of bench-spec.md (never part of test)
+#   make screenshots  the demos' pictures in docs/images/
 # Each module foo.scm becomes build/downstroke.foo.so plus its import library,
 # exactly the files `chicken-install` would install.
 
@@ -31,7 +32,7 @@ export CHICKEN_REPOSITORY_PATH = $(abspath $(BUILD)):$(CHICKEN_REPO)
 # Tests and benchmarks run headless; demos open a window when there is a display.
 HEADLESS := SDL_VIDEODRIVER=dummy SDL_AUDIODRIVER=dummy
 
-.PHONY: all deps libs examples assets test demo bench clean
+.PHONY: all deps libs examples assets test demo bench screenshots clean
 all: libs
 
 deps:
@@ -78,6 +79,10 @@ assets: libs
 	@$(HEADLESS) csi -q -s tools/make-assets.scm
 
 # Opens a window when there is a display; otherwise runs headless and says so.
+# The demos' pictures in docs/images/ (demo-NAME.png), from headless runs.
+screenshots: libs assets
+	$(HEADLESS) sh tools/make-screenshots.sh
+
 demo: libs assets
 	bin/demo-platformer
 

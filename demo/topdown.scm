@@ -60,9 +60,10 @@
     (game-asset-set! game 'coins left)
     (game-scene-set! game scene)))
 
-;; The renderer does not draw object layers, and the scene's sprites come
-;; from sprites.tsx, so the coins (tiles of tiles.tsx) are drawn here: the
-;; ones still in the level, then one per coin picked up, top left.
+;; The scene's sprites come from sprites.tsx, so the coins (tiles of
+;; tiles.tsx) are drawn here rather than as entities or by the map's object
+;; layer (hidden below): the ones still in the level, then one per coin
+;; picked up, top left.
 (define (coin-icons n)
   (let loop ((i 0) (out '()))
     (if (= i n)
@@ -94,6 +95,8 @@
                (game-asset-set! game 'total (length coins))
                ;; the player's sprite comes from the sprite sheet
                (game-scene-set! game (update-scene scene
+                                                   tilemap: (tilemap-hide-layers
+                                                             level (lambda (l) (equal? (layer-name l) "objects")))
                                                    entities: (list (make-player (car (objects-of-type objects "spawn"))))
                                                    tileset: (cadr (tilemap-tilesets level))
                                                    tileset-texture: #f))))
