@@ -23,7 +23,11 @@
   (define large-span 16)
 
   (define (->integer v) (if (exact? v) v (inexact->exact v)))
-  (define (cell-of v size) (->integer (floor (/ v size))))
+  ;; floor(v / size); integers the common case, without making a rational.
+  (define (cell-of v size)
+    (if (and (fixnum? v) (fixnum? size))
+        (if (fx>= v 0) (fx/ v size) (fx- (fx/ (fx+ v 1) size) 1))
+        (->integer (floor (/ v size)))))
 
   ;; n boxes numbered 0..n-1; (box k) returns the current (values x y w h);
   ;; (visit! p q) may move boxes p and q.
@@ -59,11 +63,20 @@
           (if (eq? span 'large)
               (set! large (remove-one k large))
               (for-each-cell span (lambda (b) (vector-set! buckets b (remove-one k (vector-ref buckets b))))))))
-      ;; Re-file box k if its cells changed; #t when they did.
+      ;; Re-file box k if its cells changed; #t when they did. Most visits
+      ;; move a box within its cells: that case allocates nothing.
       (define (refresh! k)
-        (let ((old (vector-ref spans k)) (new (span-of k)))
-          (and (not (equal? old new))
-               (begin (unregister! k) (register! k new) #t))))
+        (let ((old (vector-ref spans k)))
+          (let-values (((x y w h) (box k)))
+            (if (and (vector? old)
+                     (eqv? (vector-ref old 0) (cell-of x size))
+                     (eqv? (vector-ref old 1) (cell-of y size))
+                     (eqv? (vector-ref old 2) (cell-of (+ x w) size))
+                     (eqv? (vector-ref old 3) (cell-of (+ y h) size)))
+                #f
+                (let ((new (span-of k)))
+                  (and (not (equal? old new))
+                       (begin (unregister! k) (register! k new) #t)))))))
       ;; Add to the ascending `queue` every box after `after` sharing a cell
       ;; with p, or large, not yet queued in row p.
       (define (gather p after queue)
