@@ -5,11 +5,7 @@
 (import scheme (chicken base) (chicken io) (chicken process) (chicken file)
         (chicken string) (chicken port) (downstroke test))
 (include-relative "pixels.scm")
-
-(define (an-run args)
-  (with-input-from-pipe (string-append "cd .. && " args " 2>/dev/null") read-lines))
-
-(define (an-last-line lines) (if (null? lines) "" (car (reverse lines))))
+(include-relative "demo-support.scm")
 
 ;; "animation: frame N ((type anim tile x) ...)" -> (N characters), or #f.
 (define (an-parse line)
@@ -43,7 +39,7 @@
   ;; 100 frames: hero 1 walks right from 40 (1 px a frame, from frame 1);
   ;; hero 2 walked left from 250 and reached 170 on frame 80, where it
   ;; rests (idle from then on: 19 steps); the blob hops at 1/2 px a frame.
-  (let ((r (an-parse (an-last-line (an-run (string-append "bin/demo-animation --headless --frames 100 --screenshot " an-shot))))))
+  (let ((r (an-parse (last-line (demo-output (string-append "bin/demo-animation --headless --frames 100 --screenshot " an-shot))))))
     (test-assert "the demo prints its characters" r)
     (when r
       (test "it ran 100 frames" 100 (car r))
@@ -88,7 +84,7 @@
   ;; 155 frames: hero 1 reached its right end (150) on frame 110 and has
   ;; rested 44 steps: the blink frame (steps 41-46). Hero 2 rested 60
   ;; frames (81-140), turned and walks right again since frame 142.
-  (let ((r (an-parse (an-last-line (an-run "bin/demo-animation --headless --frames 155")))))
+  (let ((r (an-parse (last-line (demo-output "bin/demo-animation --headless --frames 155")))))
     (test-assert "the demo prints its characters" r)
     (when r
       (test "hero 1 blinks while it rests at the end of its beat"

@@ -11,12 +11,7 @@
 (import scheme (chicken base) (chicken io) (chicken process) (chicken file)
         (chicken string) (chicken port) (chicken format) (downstroke test))
 (include-relative "pixels.scm")
-
-;; The lines the demo prints (stderr dropped), run from the repository root.
-(define (sb-run args)
-  (with-input-from-pipe (string-append "cd .. && " args " 2>/dev/null") read-lines))
-
-(define (sb-last-line lines) (if (null? lines) "" (car (reverse lines))))
+(include-relative "demo-support.scm")
 
 ;; "sandbox: N movers, N inside, max overlap X px, windmill at (X, Y)"
 ;; -> (movers inside overlap hub-x hub-y), or #f.
@@ -49,7 +44,7 @@
         (map sb-hub-x '(1 164 300 328 450)))
 
   (test-group "450 frames, no screenshot"
-    (let ((r (sb-parse (sb-last-line (sb-run "bin/demo-sandbox --headless --frames 450")))))
+    (let ((r (sb-parse (last-line (demo-output "bin/demo-sandbox --headless --frames 450")))))
       (test-assert "the demo prints its final state" r)
       (when r
         (test "120 movers, all inside the walls" '(120 120) (list (car r) (cadr r)))
@@ -58,7 +53,7 @@
 
   (test-group "300 frames, with a screenshot"
     (when (file-exists? sb-shot) (delete-file sb-shot))
-    (let ((r (sb-parse (sb-last-line (sb-run (string-append "bin/demo-sandbox --headless --frames 300 --screenshot " sb-shot))))))
+    (let ((r (sb-parse (last-line (demo-output (string-append "bin/demo-sandbox --headless --frames 300 --screenshot " sb-shot))))))
       (test-assert "the demo prints its final state" r)
       (test-assert "a screenshot at twice the logical size"
                    (and (file-exists? sb-shot)

@@ -9,18 +9,13 @@
 (import scheme (chicken base) (chicken io) (chicken process) (chicken file)
         (chicken string) (chicken format) (downstroke test))
 (include-relative "pixels.scm")
-
-;; The lines the demo prints (stderr dropped), run from the repository root.
-(define (sh-run args)
-  (with-input-from-pipe (string-append "cd .. && " args " 2>/dev/null") read-lines))
-
-(define (sh-last-line lines) (if (null? lines) "" (car (reverse lines))))
+(include-relative "demo-support.scm")
 
 ;; Runs the demo for `frames` with `script` (or none); returns its last line.
 (define (sh-demo! frames script shot)
   (when (file-exists? shot) (delete-file shot))
   (when script (with-output-to-file "/tmp/sh-script.scm" (lambda () (write script))))
-  (sh-last-line (sh-run (sprintf "bin/demo-shmup --headless --frames ~a --screenshot ~a~a"
+  (last-line (demo-output (sprintf "bin/demo-shmup --headless --frames ~a --screenshot ~a~a"
                                  frames shot (if script " --script /tmp/sh-script.scm" "")))))
 
 (define sh-ship '(120 220 255))

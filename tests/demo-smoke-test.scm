@@ -3,23 +3,17 @@
 
 (import scheme (chicken base) (chicken io) (chicken process) (chicken file)
         (chicken file posix) (chicken string) (downstroke test))
-
-;; The lines a demo prints (stderr dropped: SDL's audio chatter), run from
-;; the repository root.
-(define (ds-run args)
-  (with-input-from-pipe (string-append "cd .. && " args " 2>/dev/null") read-lines))
-
-(define (ds-last-line lines) (if (null? lines) "" (car (reverse lines))))
+(include-relative "demo-support.scm")
 
 (test-group "demo: getting-started"
   (with-output-to-file "/tmp/ds-gs-script.scm" (lambda () (write '((0 right) (10)))))
   (test "ten frames of the right arrow move the square 30 px"
         "getting-started: square at 180 110"
-        (ds-last-line (ds-run "bin/demo-getting-started --headless --frames 30 --script /tmp/ds-gs-script.scm"))))
+        (last-line (demo-output "bin/demo-getting-started --headless --frames 30 --script /tmp/ds-gs-script.scm"))))
 
 (test-group "demo: platformer"
   (when (file-exists? "/tmp/ds-platformer.png") (delete-file "/tmp/ds-platformer.png"))
-  (let ((line (ds-last-line (ds-run "bin/demo-platformer --headless --frames 120 --screenshot /tmp/ds-platformer.png"))))
+  (let ((line (last-line (demo-output "bin/demo-platformer --headless --frames 120 --screenshot /tmp/ds-platformer.png"))))
     (test-assert "the player stands on the ground after 120 frames"
                  (substring-index "on-ground #t" line))
     (test-assert "a screenshot was saved"

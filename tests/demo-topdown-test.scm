@@ -8,13 +8,7 @@
 (import scheme (chicken base) (chicken io) (chicken process) (chicken file)
         (chicken string) (chicken format) (downstroke test))
 (include-relative "pixels.scm")
-
-;; The lines the demo prints (stderr dropped: SDL's audio chatter), run
-;; from the repository root.
-(define (td-run args)
-  (with-input-from-pipe (string-append "cd .. && " args " 2>/dev/null") read-lines))
-
-(define (td-last-line lines) (if (null? lines) "" (car (reverse lines))))
+(include-relative "demo-support.scm")
 
 (define (td-script! path script)
   (with-output-to-file path (lambda () (write script))))
@@ -35,7 +29,7 @@
   (test-group "no input: the player stays at the map's start, the camera centred on it"
     (test "the final line"
           "topdown: player at (304, 336) coins 0 of 19 camera (152, 144)"
-          (td-last-line (td-run "bin/demo-topdown --headless --frames 20"))))
+          (last-line (demo-output "bin/demo-topdown --headless --frames 20"))))
 
   (test-group "a diagonal walk slides along a wall"
     ;; up-left for 39 moves of 2 px: up 48 px would cross the stone bar, so
@@ -44,13 +38,13 @@
     (td-script! "/tmp/td-diagonal.scm" '((0 up left)))
     (test "the final line"
           "topdown: player at (226, 272) coins 1 of 19 camera (74, 144)"
-          (td-last-line (td-run "bin/demo-topdown --headless --frames 40 --script /tmp/td-diagonal.scm"))))
+          (last-line (demo-output "bin/demo-topdown --headless --frames 40 --script /tmp/td-diagonal.scm"))))
 
   (test-group "up, left along the coin row, down into the bottom wall"
     (when (file-exists? td-shot) (delete-file td-shot))
     (td-script! "/tmp/td-walk.scm" '((0 up) (16 left) (76 down) (110)))
-    (let ((line (td-last-line
-                 (td-run (string-append "bin/demo-topdown --headless --frames 130 --screenshot "
+    (let ((line (last-line
+                 (demo-output (string-append "bin/demo-topdown --headless --frames 130 --screenshot "
                                         td-shot " --script /tmp/td-walk.scm")))))
       ;; 32 px up to the coin row, 120 px left over two coins, then down
       ;; until the wall: 368 - 16 = 352

@@ -4,12 +4,7 @@
 (import scheme (chicken base) (chicken io) (chicken process) (chicken file)
         (chicken string) (chicken port) (chicken format) (downstroke test) (downstroke tween))
 (include-relative "pixels.scm")
-
-;; The lines the demo prints, run from the repository root.
-(define (tw-run args)
-  (with-input-from-pipe (string-append "cd .. && " args " 2>/dev/null") read-lines))
-
-(define (tw-last-line lines) (if (null? lines) "" (car (reverse lines))))
+(include-relative "demo-support.scm")
 
 ;; "tweens: frame N ((name left-tick x) ...)" -> (N boxes), or #f.
 (define (tw-parse line)
@@ -46,7 +41,7 @@
 
 (test-group "demo: tweens"
   ;; 50 frames = 800 ms: the first run, going out, t = 4/5
-  (let ((r (tw-parse (tw-last-line (tw-run "bin/demo-tweens --headless --frames 50")))))
+  (let ((r (tw-parse (last-line (demo-output "bin/demo-tweens --headless --frames 50")))))
     (test-assert "the demo prints its boxes" r)
     (when r
       (test "it ran 50 frames" 50 (car r))
@@ -59,7 +54,7 @@
 
   ;; 90 frames = 1440 ms: the second run, coming back, 440 ms in: t = 14/25
   (when (file-exists? tw-shot) (delete-file tw-shot))
-  (let ((r (tw-parse (tw-last-line (tw-run (string-append "bin/demo-tweens --headless --frames 90 --screenshot " tw-shot))))))
+  (let ((r (tw-parse (last-line (demo-output (string-append "bin/demo-tweens --headless --frames 90 --screenshot " tw-shot))))))
     (test-assert "the demo prints its boxes" r)
     (when r
       (let ((boxes (cadr r)))
