@@ -67,3 +67,22 @@
     (let ((s (make-scene tilemap: tm camera-target: 'hero
                          entities: (list (player 320 240) (ent #:x 100 #:y 100 #:width 0 #:height 0 #:tags '(hero))))))
       (test "camera-target names the tag to follow" '(0 0) (cam (scene-follow-camera s 320 240))))))
+
+(test-group "scene-map-entities shares what it does not change"
+  (let* ((es (map (lambda (i) (ent #:id i #:x i)) '(0 1 2 3 4 5)))
+         (s (make-scene entities: es))
+         (seen '())
+         (out (scene-entities
+               (scene-map-entities s (lambda (sc e)
+                                       (set! seen (cons (entity-ref e #:id) seen))
+                                       (if (= (entity-ref e #:id) 2) (entity-set e #:x 20) e))))))
+    (test "proc sees the entities in order" '(0 1 2 3 4 5) (reverse seen))
+    (test "the changed entity is new" '(0 1 20 3 4 5) (map (lambda (e) (entity-ref e #:x)) out))
+    (test "the entities before it are the same objects" #t (and (eq? (car out) (car es)) (eq? (cadr out) (cadr es))))
+    (test "the list after it is shared" #t (eq? (cdddr out) (cdddr es)))
+    (test "nothing changed: the same scene" #t (eq? s (scene-map-entities s (lambda (sc e) e))))
+    (test "a long list (100,000) maps without trouble" 100000
+          (length (scene-entities (scene-map-entities
+                                   (make-scene entities: (let loop ((i 0) (out '()))
+                                                           (if (= i 100000) out (loop (+ i 1) (cons (ent #:x i) out)))))
+                                   (lambda (sc e) (entity-set e #:x 0))))))))
