@@ -100,17 +100,14 @@
   (make-game
    title: "Downstroke sandbox" width: 320 height: 240 scale: 2
    create: (lambda (game)
-             (let ((scene (game-load-scene!
-                           game "demo/levels/sandbox.tmx" camera-target: #f engine-update: engine-update
-                           entities: (append (let loop ((i (- movers 1)) (out '()))
-                                               (if (< i 0) out (loop (- i 1) (cons (mover i) out))))
-                                             (list hub)
-                                             (map (lambda (arm r) (turn-arm (arm-block arm r) 0))
-                                                  '(0 0 1 1 2 2 3 3) '(15 27 15 27 15 27 15 27))))))
-               ;; Discrete tile steps: nothing here is fast enough to pass a wall
-               ;; in a frame, and the swept step's start, x - vx, can round to
-               ;; just inside a wall that a mover with a flonum speed leaves.
-               (game-scene-set! game (update-scene scene collision-mode: 'discrete))))
+             ;; the scene's collision mode is the default, swept
+             (game-load-scene!
+              game "demo/levels/sandbox.tmx" camera-target: #f engine-update: engine-update
+              entities: (append (let loop ((i (- movers 1)) (out '()))
+                                  (if (< i 0) out (loop (- i 1) (cons (mover i) out))))
+                                (list hub)
+                                (map (lambda (arm r) (turn-arm (arm-block arm r) 0))
+                                     '(0 0 1 1 2 2 3 3) '(15 27 15 27 15 27 15 27)))))
    update: update))
 
 (demo-run! game)
