@@ -3,7 +3,19 @@
 
 (import scheme (chicken base) (chicken io) (chicken process) (chicken file)
         (chicken file posix) (chicken string) (downstroke test))
+(include-relative "pixels.scm")
 (include-relative "demo-support.scm")
+
+;; The integers of a line, in order ("at (32, 192) ... (0, 0)" -> (32 192 0 0)).
+(define (ds-numbers line)
+  (let loop ((cs (string->list line)) (digits '()) (out '()))
+    (define (flush) (if (null? digits) out (cons (string->number (list->string (reverse digits))) out)))
+    (cond ((null? cs) (reverse (flush)))
+          ((or (char-numeric? (car cs))
+               (and (char=? (car cs) #\-) (null? digits)
+                    (pair? (cdr cs)) (char-numeric? (cadr cs))))
+           (loop (cdr cs) (cons (car cs) digits) out))
+          (else (loop (cdr cs) '() (flush))))))
 
 (test-group "demo: getting-started"
   (with-output-to-file "/tmp/ds-gs-script.scm" (lambda () (write '((0 right) (10)))))
@@ -16,6 +28,24 @@
   (let ((line (last-line (demo-output "bin/demo-platformer --headless --frames 120 --screenshot /tmp/ds-platformer.png"))))
     (test-assert "the player stands on the ground after 120 frames"
                  (substring-index "on-ground #t" line))
-    (test-assert "a screenshot was saved"
-                 (and (file-exists? "/tmp/ds-platformer.png")
-                      (> (file-size "/tmp/ds-platformer.png") 1000)))))
+    ;; the line's numbers, read back: x y camera-x camera-y
+    (let* ((numbers (ds-numbers line))
+           (x (list-ref numbers 0)) (y (list-ref numbers 1))
+           (cx (list-ref numbers 2)) (cy (list-ref numbers 3))
+           (shot "/tmp/ds-platformer.png")
+           (scale 2)                    ; the demo's window scale
+           (sx (* scale (- x cx))) (sy (* scale (- y cy))))
+      (test "the player's shirt (12 x 4 px) is drawn where the line says"
+            (* 12 4 scale scale)
+            (png-count shot (near-colour? '(40 120 230)) sx sy (* 16 scale) (* 16 scale)))
+      (test "the row under its feet is ground, not sky" 0
+            (png-count shot (near-colour? '(92 148 252)) sx (+ sy (* 16 scale)) (* 16 scale) scale))
+      (test-assert "and the sky is just above its head"
+                   (> (png-count shot (near-colour? '(92 148 252)) sx (- sy scale) (* 16 scale) scale) 0)))))
+
+(test-group "demo: getting-started screenshot"
+  (when (file-exists? "/tmp/ds-gs.png") (delete-file "/tmp/ds-gs.png"))
+  (demo-output "bin/demo-getting-started --headless --frames 30 --script /tmp/ds-gs-script.scm --screenshot /tmp/ds-gs.png")
+  (test "the square is a 20 x 20 rect of its colour at (180, 110)" 400
+        (png-count "/tmp/ds-gs.png" (near-colour? '(240 200 60)) 180 110 20 20))
+  (test "and nowhere else" 400 (png-count "/tmp/ds-gs.png" (near-colour? '(240 200 60)))))
