@@ -77,7 +77,7 @@
    controller-buttons controller-axes)
 
   (import scheme (chicken base) (chicken format) (chicken foreign)
-          (only (downstroke sdl2) keycode->key sdl-initialized?))
+          (only (downstroke sdl2) keycode->key key-symbols sdl-initialized?))
 
   (foreign-declare #<<EOF
 #include <SDL.h>
@@ -157,13 +157,34 @@ EOF
       (error who (sprintf "unknown action ~s (actions: ~s)" a input-actions)))
     a)
 
+  ;; SDL_GameControllerButton and SDL_GameControllerAxis, in enum order.
+  (define controller-buttons
+    '(a b x y back guide start left-stick right-stick left-shoulder right-shoulder
+      dpad-up dpad-down dpad-left dpad-right))
+  (define controller-axes '(left-x left-y right-x right-y trigger-left trigger-right))
+
+  ;; A misspelt key, button or axis would never match: it is an error.
+  (define (check-source what name known #!optional (hint (sprintf "one of ~s" known)))
+    (unless (memq name known)
+      (error 'make-input-config (sprintf "unknown ~a ~s: ~a" what name hint)))
+    name)
+
   (define (make-input-config #!key (keys default-keys) (buttons default-buttons)
                              (axes default-axes) (dead-zone default-dead-zone))
-    (for-each (lambda (p) (check-action 'make-input-config (cdr p))) keys)
-    (for-each (lambda (p) (check-action 'make-input-config (cdr p))) buttons)
+    (for-each (lambda (p)
+                (unless (pair? p) (error 'make-input-config "a key binding is (KEY . ACTION)" p))
+                (check-source "key" (car p) (key-symbols) "(key-symbols) lists the names")
+                (check-action 'make-input-config (cdr p)))
+              keys)
+    (for-each (lambda (p)
+                (unless (pair? p) (error 'make-input-config "a button binding is (BUTTON . ACTION)" p))
+                (check-source "button" (car p) controller-buttons)
+                (check-action 'make-input-config (cdr p)))
+              buttons)
     (for-each (lambda (ax)
                 (unless (and (list? ax) (= (length ax) 3) (memq (cadr ax) '(+ -)))
                   (error 'make-input-config "an axis binding is (AXIS + | - ACTION)" ax))
+                (check-source "axis" (car ax) controller-axes)
                 (check-action 'make-input-config (caddr ax)))
               axes)
     (unless (and (real? dead-zone) (>= dead-zone 0))
@@ -333,11 +354,6 @@ EOF
   ;;; ------------------------------------------------------------------
   ;;; Reading SDL: keys, quit and game controllers.
 
-  ;; SDL_GameControllerButton and SDL_GameControllerAxis, in enum order.
-  (define controller-buttons
-    '(a b x y back guide start left-stick right-stick left-shoulder right-shoulder
-      dpad-up dpad-down dpad-left dpad-right))
-  (define controller-axes '(left-x left-y right-x right-y trigger-left trigger-right))
 
   (define (index-of x xs who)
     (let loop ((ys xs) (i 0))

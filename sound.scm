@@ -205,11 +205,13 @@ EOF
   ;; Plays on the first free channel and answers its number, or #f when
   ;; every channel is busy (the sound is dropped, as games expect).
   (define (play-sound name)
+    ;; closed audio first: with it the registry is empty, and "no sound
+    ;; named" would hide the real cause
+    (check-open 'play-sound)
     (let ((entry (assoc name sounds)))
       (unless entry
         (error 'play-sound (sprintf "no sound named ~s (loaded: ~s)" name (sound-names))
                name))
-      (check-open 'play-sound)
       (let ((ch ((foreign-lambda int "Mix_PlayChannel" int c-pointer int)
                  -1 (chunk-ptr (cdr entry)) 0)))
         (and (>= ch 0) ch))))

@@ -27,6 +27,15 @@
   (test-error "an unknown action is refused"
               (lambda (exn) (substring-index "jump" (error-text exn)))
               (make-input-config keys: '((space . jump))))
+  (test-error "a misspelt key is refused, named"
+              (lambda (exn) (substring-index "unknown key spacebar" (error-text exn)))
+              (make-input-config keys: '((spacebar . a))))
+  (test-error "a misspelt controller button is refused, named"
+              (lambda (exn) (substring-index "unknown button turbo" (error-text exn)))
+              (make-input-config buttons: '((turbo . a))))
+  (test-error "a misspelt axis is refused, named"
+              (lambda (exn) (substring-index "unknown axis wheel" (error-text exn)))
+              (make-input-config axes: '((wheel + right))))
   (let ((c (make-input-config keys: '((space . a)))))
     (test "a custom key" '(#t #t #f)
           (in-edges (input-update (make-input-state) c '((key-down space #f))) 'a))

@@ -67,7 +67,8 @@
                 (load-sounds! `((beep . ,snd-wav))))
     (test-error "load-music! needs init-audio!" (snd-says? "init-audio!")
                 (load-music! snd-wav))
-    (test-error "unknown sound name" (snd-says? "nope")
+    (test-error "play-sound needs init-audio! (said first, not \"no sound named\")"
+                (snd-says? "init-audio!")
                 (play-sound 'nope)))
 
   (test-group "volume mapping"
@@ -178,7 +179,8 @@
     (test "registry emptied" '() (sound-names))
     (test "no music" #f (music-loaded?))
     (test "music not playing" #f (music-playing?))
-    (test-error "sound names are gone" (snd-says? "beep") (play-sound 'beep))
+    (test "sound names are gone" '() (sound-names))
+    (test-error "and play-sound says audio is closed" (snd-says? "init-audio!") (play-sound 'beep))
     (stop-music!)
     (test-assert "stop-music! after shutdown is harmless" #t)
     (gc #t)
