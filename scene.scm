@@ -184,8 +184,9 @@
     (define (axis centre view lo extent)
       (let ((pos (- centre (/ view 2))))
         (if extent (max lo (min pos (- (+ lo extent) view))) pos)))
-    (let ((cx (+ (entity-ref target #:x 0) (/ (entity-ref target #:width 0) 2)))
-          (cy (+ (entity-ref target #:y 0) (/ (entity-ref target #:height 0) 2))))
+    (let* ((target (as-entity target))    ; a plist target works too
+           (cx (+ (entity-ref target #:x 0) (/ (entity-ref target #:width 0) 2)))
+           (cy (+ (entity-ref target #:y 0) (/ (entity-ref target #:height 0) 2))))
       (%make-camera (axis cx view-w
                           (if tilemap (* (tilemap-origin-col tilemap) (tilemap-tile-width tilemap)) 0)
                           (and tilemap (tilemap-pixel-width tilemap)))

@@ -86,3 +86,9 @@
                                    (make-scene entities: (let loop ((i 0) (out '()))
                                                            (if (= i 100000) out (loop (+ i 1) (cons (ent #:x i) out)))))
                                    (lambda (sc e) (entity-set e #:x 0))))))))
+
+(test-group "camera-follow takes a plist target too"
+  (let ((cam-a (camera-follow (make-camera) (list #:x 100 #:y 80 #:width 20 #:height 20) 100 100 #f))
+        (cam-b (camera-follow (make-camera) (ent #:x 100 #:y 80 #:width 20 #:height 20) 100 100 #f)))
+    (test "the same camera" (list (camera-x cam-b) (camera-y cam-b)) (list (camera-x cam-a) (camera-y cam-a)))
+    (test "centred on the target" '(60 40) (list (camera-x cam-a) (camera-y cam-a)))))
