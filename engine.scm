@@ -106,11 +106,14 @@
   (define need-pairs 4)         ; two or more entities have #:solid?
   (define need-groups 8)        ; an entity has a #:group-id
   (define need-animation 16)    ; an entity has #:animations
+  (define need-support 32)      ; an entity has #:solid? (it may hold others up)
 
   (define (pipeline-needs entities)
     (let next ((es entities) (bits 0) (solids 0))
       (if (null? es)
-          (if (fx>= solids 2) (fxior bits need-pairs) bits)
+          (fxior bits (cond ((fx>= solids 2) (fxior need-pairs need-support))
+                            ((fx= solids 1) need-support)
+                            (else 0)))
           (let walk ((ps (car es)) (bits bits) (solid? #f))
             (if (null? ps)
                 (next (cdr es) bits (if solid? (fx+ solids 1) solids))
@@ -136,15 +139,25 @@
   ;; detection sees every entity after its tile passes; then the bulk
   ;; steps; then animation. A tween's on-complete may change an entity in
   ;; any way, so after tweens the needs are read again.
+  ;; Without tweens and without solid entities, ground detection looks only
+  ;; at the entity itself and the map, so it joins the motion pass.
   (define (engine-pipeline scene dt)
     (let* ((before (pipeline-needs (scene-entities scene)))
-           (scene (scene-map-entities scene (if (needs? before need-tweens)
-                                                (lambda (s e) (move-entity s e dt))
-                                                (lambda (s e) (step-motion s e dt)))))
-           (needs (if (needs? before need-tweens) (pipeline-needs (scene-entities scene)) before)))
+           (tweens? (needs? before need-tweens))
+           (ground-in-motion? (and (not tweens?) (needs? before need-ground)
+                                   (not (needs? before need-support))))
+           (scene (scene-map-entities scene (cond (tweens? (lambda (s e) (move-entity s e dt)))
+                                                  (ground-in-motion?
+                                                   (lambda (s e) (detect-on-solid s (step-motion s e dt) dt)))
+                                                  (else (lambda (s e) (step-motion s e dt))))))
+           (needs (if tweens? (pipeline-needs (scene-entities scene)) before)))
       (define (when-needed need step scene) (if (needs? needs need) (step scene) scene))
+      (define (ground-pass scene)
+        (if ground-in-motion?
+            scene
+            (when-needed need-ground (cut scene-map-entities <> (lambda (s e) (detect-on-solid s e dt))) scene)))
       (chain scene
-             (when-needed need-ground (cut scene-map-entities <> (lambda (s e) (detect-on-solid s e dt))) _)
+             (ground-pass _)
              (when-needed need-pairs (cut scene-transform-entities <> resolve-entity-collisions) _)
              (when-needed need-groups (cut scene-transform-entities <> sync-groups) _)
              (when-needed need-animation
