@@ -475,9 +475,15 @@
   ;; One pair, a before b in the entity list. Returns both, unchanged (eq?)
   ;; when they do not interact.
   (define (resolve-pair a b)
-    (if (and (collides? a) (collides? b)
-             (aabb-overlap? (num a #:x) (num a #:y) (num a #:width) (num a #:height)
-                            (num b #:x) (num b #:y) (num b #:width) (num b #:height)))
+    (if (and (collides? a) (collides? b))
+        (resolve-colliding-pair a b)
+        (values a b)))
+
+  ;; resolve-pair for two entities known to collide (solid, not skipping):
+  ;; the pass below checks that once per entity, not once per pair.
+  (define (resolve-colliding-pair a b)
+    (if (aabb-overlap? (num a #:x) (num a #:y) (num a #:width) (num a #:height)
+                       (num b #:x) (num b #:y) (num b #:width) (num b #:height))
         (let ((a-fixed (entity-ref a #:immovable? #f))
               (b-fixed (entity-ref b #:immovable? #f)))
           (cond ((and a-fixed b-fixed) (values a b))
@@ -504,7 +510,7 @@
            (n (vector-length idx)))
       (define (visit! p q)
         (let ((i (vector-ref idx p)) (j (vector-ref idx q)))
-          (let-values (((a b) (resolve-pair (vector-ref all i) (vector-ref all j))))
+          (let-values (((a b) (resolve-colliding-pair (vector-ref all i) (vector-ref all j))))
             (vector-set! all i a)
             (vector-set! all j b))))
       (define (box p)
