@@ -102,6 +102,29 @@ static size_t dsd_limit(size_t max_size, int bounded)
 
 /* ---- zlib / gzip ----------------------------------------------------- */
 
+/* zlib takes at most UINT_MAX bytes a call: give it the next slice of the
+   input once it has used the last one. */
+static void dsd_feed(z_stream *zs, const unsigned char *in, size_t inlen, size_t *fed)
+{
+  if (zs->avail_in == 0 && *fed < inlen) {
+    size_t chunk = inlen - *fed;
+    if (chunk > (1u << 30)) chunk = 1u << 30;
+    zs->next_in = (Bytef *)(in + *fed);
+    zs->avail_in = (uInt)chunk;
+    *fed += chunk;
+  }
+}
+
+/* Point zlib's output at the free room of o; returns that room's size. */
+static size_t dsd_point_out(z_stream *zs, dsd_out *o)
+{
+  size_t room = o->cap - o->len;
+  if (room > UINT_MAX) room = UINT_MAX;
+  zs->next_out = o->data + o->len;
+  zs->avail_out = (uInt)room;
+  return room;
+}
+
 static int dsd_inflate(dsd_out *o, const unsigned char *in, size_t inlen,
                        int gzip, size_t max_size, int bounded)
 {
@@ -125,24 +148,14 @@ static int dsd_inflate(dsd_out *o, const unsigned char *in, size_t inlen,
     return dsd_fail(o, DSD_NOMEM, "out of memory%s", NULL);
   }
   for (;;) {
-    size_t room, before;
-    if (zs.avail_in == 0 && fed < inlen) {
-      size_t chunk = inlen - fed;
-      if (chunk > (1u << 30)) chunk = 1u << 30;
-      zs.next_in = (Bytef *)(in + fed);
-      zs.avail_in = (uInt)chunk;
-      fed += chunk;
-    }
+    size_t before;
+    dsd_feed(&zs, in, inlen, &fed);
     if (o->len == o->cap) {
       int g = dsd_grow(o, limit);
       if (g < 0) { inflateEnd(&zs); return dsd_fail(o, DSD_NOMEM, "out of memory%s", NULL); }
       if (g == 0) break;  /* over the limit; reported below */
     }
-    room = o->cap - o->len;
-    if (room > UINT_MAX) room = UINT_MAX;
-    zs.next_out = o->data + o->len;
-    zs.avail_out = (uInt)room;
-    before = room;
+    before = dsd_point_out(&zs, o);
     rc = inflate(&zs, Z_NO_FLUSH);
     o->len += before - zs.avail_out;
     if (o->len > limit) break;
@@ -197,25 +210,15 @@ static int dsd_deflate(dsd_out *o, const unsigned char *in, size_t inlen, int gz
     return dsd_fail(o, DSD_NOMEM, "out of memory%s", NULL);
   }
   for (;;) {
-    size_t room, before;
+    size_t before;
     int flush;
-    if (zs.avail_in == 0 && fed < inlen) {
-      size_t chunk = inlen - fed;
-      if (chunk > (1u << 30)) chunk = 1u << 30;
-      zs.next_in = (Bytef *)(in + fed);
-      zs.avail_in = (uInt)chunk;
-      fed += chunk;
-    }
+    dsd_feed(&zs, in, inlen, &fed);
     flush = (fed == inlen) ? Z_FINISH : Z_NO_FLUSH;
     if (o->len == o->cap && dsd_grow(o, SIZE_MAX / 2) <= 0) {
       deflateEnd(&zs);
       return dsd_fail(o, DSD_NOMEM, "out of memory%s", NULL);
     }
-    room = o->cap - o->len;
-    if (room > UINT_MAX) room = UINT_MAX;
-    zs.next_out = o->data + o->len;
-    zs.avail_out = (uInt)room;
-    before = room;
+    before = dsd_point_out(&zs, o);
     rc = deflate(&zs, flush);
     o->len += before - zs.avail_out;
     if (rc == Z_STREAM_END) break;

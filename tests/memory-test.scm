@@ -53,24 +53,6 @@
                  (string->number (car (string-split (substring line 6) " \t"))))
                 (else (loop))))))))
 
-(define (mem-write-tmx! path)
-  (with-output-to-file path
-    (lambda ()
-      (display "<?xml version=\"1.0\" encoding=\"UTF-8\"?>
-<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"4\" height=\"3\" tilewidth=\"8\" tileheight=\"8\" infinite=\"0\">
- <tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"4\" columns=\"2\">
-  <image source=\"tiles.png\" width=\"16\" height=\"16\"/>
- </tileset>
- <layer id=\"1\" name=\"g\" width=\"4\" height=\"3\">
-  <data encoding=\"csv\">
-1,2,3,4,
-0,1,0,2,
-4,0,0,3
-  </data>
- </layer>
-</map>
-"))))
-
 (define mem-frames 10000)
 (define mem-first-reading 1000)
 (define mem-bound-kb (* 8 1024))
@@ -93,7 +75,8 @@
                         (write-solid-png! (path "a.png") 64 64 255 0 0)
                         (write-solid-png! (path "b.png") 64 64 0 0 255)
                         (write-solid-png! (path "tiles.png") 16 16 0 255 0)
-                        (mem-write-tmx! (path "m.tmx")))
+                        (write-csv-tmx! (path "m.tmx") "tiles.png" 8 2 2
+                                        '((1 2 3 4) (0 1 0 2) (4 0 0 3))))
              create: (lambda (g)
                        (game-load-scene! g (path "m.tmx") background: '(0 0 0) camera-target: #f))
              update: (lambda (g dt)

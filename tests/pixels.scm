@@ -48,3 +48,44 @@
     (render-fill-rect! rd #f)
     (img-save-png! s path)
     (free-surface! s)))
+
+(define (png-size path)
+  (receive (bytes w h) (png-rgba path) (list w h)))
+
+;; A row of square tiles of `size` px, one per colour (r g b), as a PNG.
+(define (write-tiles-png! path size colours)
+  (let* ((s (create-rgba-surface! (* size (length colours)) size))
+         (rd (create-software-renderer! s)))
+    (let loop ((cs colours) (x 0))
+      (unless (null? cs)
+        (apply render-draw-color-set! rd (car cs))
+        (render-fill-rect! rd (make-rect x 0 size size))
+        (loop (cdr cs) (+ x size))))
+    (img-save-png! s path)
+    (free-surface! s)))
+
+;; An orthogonal TMX map of one CSV tile layer, `rows` a list of rows of
+;; gids, drawn from one tileset image of `columns` x `tile-rows` tiles.
+(define (write-csv-tmx! path image tile columns tile-rows rows)
+  (let ((w (length (car rows))) (h (length rows)))
+    (with-output-to-file path
+      (lambda ()
+        (print "<?xml version=\"1.0\" encoding=\"UTF-8\"?>")
+        (print "<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"" w
+               "\" height=\"" h "\" tilewidth=\"" tile "\" tileheight=\"" tile "\" infinite=\"0\">")
+        (print " <tileset firstgid=\"1\" name=\"t\" tilewidth=\"" tile "\" tileheight=\"" tile
+               "\" tilecount=\"" (* columns tile-rows) "\" columns=\"" columns "\">")
+        (print "  <image source=\"" image "\" width=\"" (* tile columns) "\" height=\"" (* tile tile-rows) "\"/>")
+        (print " </tileset>")
+        (print " <layer id=\"1\" name=\"g\" width=\"" w "\" height=\"" h "\">")
+        (print "  <data encoding=\"csv\">")
+        (let loop ((rows rows))
+          (unless (null? rows)
+            (let row ((gids (car rows)))
+              (display (car gids))
+              (when (or (pair? (cdr gids)) (pair? (cdr rows))) (display ","))
+              (if (pair? (cdr gids)) (row (cdr gids)) (newline)))
+            (loop (cdr rows))))
+        (print "  </data>")
+        (print " </layer>")
+        (print "</map>")))))

@@ -217,28 +217,9 @@
          ;; a 2-tile tileset: gid 1 red, gid 2 blue (8x8 each)
          (write-files!
           (lambda (g)
-            (let* ((s (create-rgba-surface! 16 8))
-                   (r (create-software-renderer! s)))
-              (render-draw-color-set! r 255 0 0) (render-fill-rect! r (make-rect 0 0 8 8))
-              (render-draw-color-set! r 0 0 255) (render-fill-rect! r (make-rect 8 0 8 8))
-              (img-save-png! s (path "t.png"))
-              (free-surface! s))
-            (with-output-to-file (path "m.tmx")
-              (lambda ()
-                (display "<?xml version=\"1.0\" encoding=\"UTF-8\"?>
-<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"4\" height=\"3\" tilewidth=\"8\" tileheight=\"8\" infinite=\"0\">
- <tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"2\" columns=\"2\">
-  <image source=\"t.png\" width=\"16\" height=\"8\"/>
- </tileset>
- <layer id=\"1\" name=\"g\" width=\"4\" height=\"3\">
-  <data encoding=\"csv\">
-0,0,0,0,
-0,1,0,0,
-0,0,0,2
-  </data>
- </layer>
-</map>
-")))))
+            (write-tiles-png! (path "t.png") 8 '((255 0 0) (0 0 255)))
+            (write-csv-tmx! (path "m.tmx") "t.png" 8 2 1
+                            '((0 0 0 0) (0 1 0 0) (0 0 0 2)))))
          (pixels '())
          (first-textures #f)
          (after-reload #f)

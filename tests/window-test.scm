@@ -11,7 +11,8 @@
 (import scheme (chicken base) (chicken file) (chicken format) (chicken string)
         (chicken process) (chicken platform) (chicken io) (chicken pathname)
         (chicken process-context)
-        srfi-4 (downstroke test) (downstroke sdl2))
+        srfi-4 (only (downstroke util) take) (downstroke test) (downstroke sdl2))
+(include-relative "pixels.scm")
 
 (define win-dir (create-temporary-directory))
 (define (win-path name) (string-append win-dir "/" name))
@@ -42,31 +43,10 @@
 
 (define (win-write-files!)
   (init!)
-  (let* ((s (create-rgba-surface! 16 8))
-         (r (create-software-renderer! s)))
-    (render-draw-color-set! r 255 0 0) (render-fill-rect! r (make-rect 0 0 8 8))
-    (render-draw-color-set! r 0 0 255) (render-fill-rect! r (make-rect 8 0 8 8))
-    (img-save-png! s (win-path "t.png"))
-    (free-surface! s))
-  (with-output-to-file (win-path "m.tmx")
-    (lambda ()
-      (display "<?xml version=\"1.0\" encoding=\"UTF-8\"?>
-<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"8\" height=\"6\" tilewidth=\"8\" tileheight=\"8\" infinite=\"0\">
- <tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"2\" columns=\"2\">
-  <image source=\"t.png\" width=\"16\" height=\"8\"/>
- </tileset>
- <layer id=\"1\" name=\"g\" width=\"8\" height=\"6\">
-  <data encoding=\"csv\">
-1,0,0,0,0,0,0,0,
-0,0,0,0,0,0,0,0,
-0,0,0,2,0,0,0,0,
-0,0,0,0,0,0,0,0,
-0,0,0,0,0,0,0,0,
-0,0,0,0,0,0,0,0
-  </data>
- </layer>
-</map>
-")))
+  (write-tiles-png! (win-path "t.png") 8 '((255 0 0) (0 0 255)))
+  (write-csv-tmx! (win-path "m.tmx") "t.png" 8 2 1
+                  '((1 0 0 0 0 0 0 0) (0 0 0 0 0 0 0 0) (0 0 0 2 0 0 0 0)
+                    (0 0 0 0 0 0 0 0) (0 0 0 0 0 0 0 0) (0 0 0 0 0 0 0 0)))
   (with-output-to-file (win-path "game.scm") (lambda () (display win-script))))
 
 ;; The shell command: the child sees this process's module repository,
@@ -87,17 +67,6 @@
          (status (close-input-pipe port)))
     (values (if (eof-object? out) "" out) status)))
 
-(define (win-png-pixel path x y)
-  (let ((s (img-load-surface! path)))
-    (receive (px w h) (surface-pixels s)
-      (free-surface! s)
-      (let ((i (* 4 (+ x (* y w)))))
-        (list (u8vector-ref px i) (u8vector-ref px (+ i 1)) (u8vector-ref px (+ i 2)))))))
-
-(define (win-png-size path)
-  (let ((s (img-load-surface! path)))
-    (receive (w h) (surface-size s) (free-surface! s) (list w h))))
-
 (test-group "window: a real X11 window under xvfb-run"
   (test-assert "xvfb-run is installed (install the Debian packages xvfb and xauth; `make test` installs them)"
                win-xvfb-run?)
@@ -114,8 +83,8 @@
         (test-assert "30 frames ran" (has? "frames 30\n"))
         (test-assert "the screenshot was saved" (file-exists? (win-path "shot.png")))
         (when (file-exists? (win-path "shot.png"))
-          (let ((at (lambda (x y) (win-png-pixel (win-path "shot.png") x y))))
-            (test "the screenshot is the window's size" '(128 96) (win-png-size (win-path "shot.png")))
+          (let ((at (lambda (x y) (take (png-pixel (win-path "shot.png") x y) 3))))
+            (test "the screenshot is the window's size" '(128 96) (png-size (win-path "shot.png")))
             (test "the red tile at cell (0, 0), 2x: pixels 0..15" '((255 0 0) (255 0 0) (0 255 0))
                   (list (at 0 0) (at 15 15) (at 16 0)))
             (test "the blue tile at cell (3, 2): pixels (48..63, 32..47)"
