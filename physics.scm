@@ -145,7 +145,7 @@
   (define last-grids (cons #f #f))      ; (tilemap . #(columns rows))
 
   (define (grids tm)
-    (if (and (eq? (car last-grids) tm) (eq? (tilemap-solid-grid tm) (grid-bytes (vector-ref (cdr last-grids) 0))))
+    (if (eq? (car last-grids) tm)
         (cdr last-grids)
         (let ((bytes (tilemap-solid-grid tm)))
           (let ((v (vector (make-axis-grid bytes 1 (tilemap-width tm)

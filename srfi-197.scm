@@ -36,6 +36,11 @@
               ((pair? x) (loop (cdr x)))
               (else #f))))
 
+    ;; Every operator needs a proper form with at least an initial value.
+    (define (s197-check-initial who form)
+      (unless (and (s197-proper-list? form) (pair? (cdr form)))
+        (syntax-error who "missing initial value" form)))
+
     (define (s197-same-id? x id compare)
       (and (symbol? x) (compare x id)))
 
@@ -162,8 +167,7 @@
   (define-syntax chain
     (er-macro-transformer
      (lambda (form rename compare)
-       (unless (and (s197-proper-list? form) (pair? (cdr form)))
-         (syntax-error 'chain "missing initial value" form))
+       (s197-check-initial 'chain form)
        (let-values (((steps ph ell)
                      (s197-optional-symbols (cddr form) #t rename)))
          (s197-expand-chain 'chain (cadr form) steps ph ell form rename compare)))))
@@ -193,8 +197,7 @@
   (define-syntax chain-and
     (er-macro-transformer
      (lambda (form rename compare)
-       (unless (and (s197-proper-list? form) (pair? (cdr form)))
-         (syntax-error 'chain-and "missing initial value" form))
+       (s197-check-initial 'chain-and form)
        (let-values (((steps ph ell) (s197-optional-symbols (cddr form) #f rename)))
          (let loop ((expr (cadr form)) (steps steps))
            (if (null? steps)
@@ -212,8 +215,7 @@
   (define-syntax chain-when
     (er-macro-transformer
      (lambda (form rename compare)
-       (unless (and (s197-proper-list? form) (pair? (cdr form)))
-         (syntax-error 'chain-when "missing initial value" form))
+       (s197-check-initial 'chain-when form)
        (let-values (((clauses ph ell) (s197-optional-symbols (cddr form) #f rename)))
          (let ((var (gensym 'x)))
            (let loop ((expr (cadr form)) (clauses clauses))
@@ -240,8 +242,7 @@
   (define-syntax nest
     (er-macro-transformer
      (lambda (form rename compare)
-       (unless (and (s197-proper-list? form) (pair? (cdr form)))
-         (syntax-error 'nest "missing initial value" form))
+       (s197-check-initial 'nest form)
        (let* ((args (cdr form))
               (ph? (and (pair? (cdr args)) (symbol? (car args))))
               (ph (if ph? (car args) (rename '_)))
@@ -258,8 +259,7 @@
   (define-syntax nest-reverse
     (er-macro-transformer
      (lambda (form rename compare)
-       (unless (and (s197-proper-list? form) (pair? (cdr form)))
-         (syntax-error 'nest-reverse "missing initial value" form))
+       (s197-check-initial 'nest-reverse form)
        (let-values (((steps ph ell) (s197-optional-symbols (cddr form) #f rename)))
          (let loop ((inner (cadr form)) (steps steps))
            (if (null? steps)

@@ -1279,13 +1279,18 @@
   ;;; ------------------------------------------------------------------
   ;;; Loading: the map
 
-  (define (check-gids file layers tilesets)
-    ;; Tilesets sorted by first gid; cells checked with a one-entry memo.
+  ;; A predicate: whether some tileset covers gid g (the one with the
+  ;; largest first gid not above g).
+  (define (gid-covered-by tilesets)
     (let ((sorted (sort-tilesets tilesets)))
-      (define (covered? g)
+      (lambda (g)
         (let loop ((ts sorted) (best #f))
           (cond ((and (pair? ts) (<= (tileset-first-gid (car ts)) g)) (loop (cdr ts) (car ts)))
-                (else (and best (tileset-covers? best g))))))
+                (else (and best (tileset-covers? best g))))))))
+
+  (define (check-gids file layers tilesets)
+    ;; cells checked with a one-entry memo
+    (let ((covered? (gid-covered-by tilesets)))
       (for-each
        (lambda (entry)
          (let* ((layer (car entry))
@@ -1316,11 +1321,7 @@
                         (else (cons (car o) (ins (cdr o))))))))))
 
   (define (check-object-gids file layers tilesets)
-    (let ((sorted (sort-tilesets tilesets)))
-      (define (covered? g)
-        (let loop ((ts sorted) (best #f))
-          (cond ((and (pair? ts) (<= (tileset-first-gid (car ts)) g)) (loop (cdr ts) (car ts)))
-                (else (and best (tileset-covers? best g))))))
+    (let ((covered? (gid-covered-by tilesets)))
       (for-each
        (lambda (layer)
          (for-each
