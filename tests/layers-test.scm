@@ -9,6 +9,7 @@
         srfi-4 (downstroke test) (downstroke sdl2) (downstroke entity)
         (downstroke scene) (downstroke tilemap) (downstroke renderer)
         (downstroke prefabs) (downstroke engine))
+(include-relative "pixels.scm")
 
 (unless (sdl-initialized?) (init!))
 
@@ -111,11 +112,7 @@
                  (make-scene tilemap: (load-tilemap path) entities: entities
                              background: background camera: (make-camera x: cx y: cy))
                  textures: ly-textures debug?: debug?)
-  (receive (px w h) (render-read-pixels ly-renderer)
-    (lambda (x y)
-      (let ((i (* 4 (+ x (* y w)))))
-        (list (u8vector-ref px i) (u8vector-ref px (+ i 1))
-              (u8vector-ref px (+ i 2)) (u8vector-ref px (+ i 3)))))))
+  (renderer-pixels ly-renderer))
 
 (define (ly-near? expected actual)
   (let loop ((a expected) (b actual))
@@ -472,11 +469,7 @@
     (game-run! g frames: frames)
     g))
 
-(define (ly-game-pixel g x y)
-  (receive (px w h) (render-read-pixels (game-renderer g))
-    (let ((i (* 4 (+ x (* y w)))))
-      (list (u8vector-ref px i) (u8vector-ref px (+ i 1))
-            (u8vector-ref px (+ i 2)) (u8vector-ref px (+ i 3))))))
+(define (ly-game-pixel g x y) (renderer-pixel (game-renderer g) x y))
 
 (test-group "objects as entities: game-load-scene!"
   (let* ((seen #f)

@@ -63,7 +63,9 @@
          (tex #f)
          (loads 0)
          (readings '())                 ; (frame rss-kb counts), newest first
-         (before (live-resource-counts))
+         ;; earlier suites' garbage resources are freed by finalizers
+         ;; first, so they do not count against this run
+         (before (begin (gc #t) (live-resource-counts)))
          (read! (lambda (g)
                   (gc #t)
                   (set! readings (cons (list (+ (game-frame g) 1) (mem-rss-kb) (live-resource-counts)

@@ -4,6 +4,7 @@
 (import scheme (chicken base) (chicken file) (chicken format) (chicken string)
         srfi-4 (downstroke test) (downstroke sdl2) (downstroke entity)
         (downstroke scene) (downstroke tilemap) (downstroke renderer))
+(include-relative "pixels.scm")
 
 (init!)
 
@@ -50,11 +51,7 @@
 ;; Clear to the background, draw the overlay (or the whole scene with
 ;; debug?), answer (x y) -> (r g b a).
 (define (ov-read)
-  (receive (px w h) (render-read-pixels ov-renderer)
-    (lambda (x y)
-      (let ((i (* 4 (+ x (* y w)))))
-        (list (u8vector-ref px i) (u8vector-ref px (+ i 1))
-              (u8vector-ref px (+ i 2)) (u8vector-ref px (+ i 3)))))))
+  (renderer-pixels ov-renderer))
 
 (define (ov-draw scene)
   (render-draw-blend-mode-set! ov-renderer 'none)

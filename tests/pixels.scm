@@ -13,6 +13,10 @@
 (define (renderer-pixel r x y)
   (receive (bytes w h) (render-read-pixels r) (rgba-at bytes w x y)))
 
+;; What the renderer drew, read once, as a procedure (x y) -> colour.
+(define (renderer-pixels r)
+  (receive (bytes w h) (render-read-pixels r) (lambda (x y) (rgba-at bytes w x y))))
+
 ;; (values bytes w h) of a PNG file, as RGBA.
 (define (png-rgba path)
   (let ((s (img-load-surface! path)))

@@ -4,6 +4,7 @@
 (import scheme (chicken base) (chicken file) (chicken format) (chicken string)
         srfi-4 (downstroke test) (downstroke sdl2) (downstroke entity)
         (downstroke scene) (downstroke tilemap) (downstroke renderer))
+(include-relative "pixels.scm")
 
 (init!)
 
@@ -91,11 +92,7 @@
 ;; Draw a scene and answer a procedure (x y) -> (r g b a).
 (define (rn-draw scene . options)
   (apply render-scene! rn-renderer scene options)
-  (receive (px w h) (render-read-pixels rn-renderer)
-    (lambda (x y)
-      (let ((i (* 4 (+ x (* y w)))))
-        (list (u8vector-ref px i) (u8vector-ref px (+ i 1))
-              (u8vector-ref px (+ i 2)) (u8vector-ref px (+ i 3)))))))
+  (renderer-pixels rn-renderer))
 
 (define (rn-map-scene tm cam-x cam-y . entities)
   (make-scene tilemap: tm entities: entities background: rn-bg

@@ -3,7 +3,7 @@
 ;;; order, scripted and recorded input, cleanup after errors, quitting,
 ;;; game states.
 
-(import scheme (chicken base) (chicken string) (chicken file) srfi-4
+(import scheme (chicken base) (chicken string) (chicken file) srfi-4 (only (downstroke util) take)
         (downstroke test) (downstroke sdl2) (downstroke entity) (downstroke scene)
         (downstroke input) (downstroke engine))
 (include-relative "pixels.scm")
@@ -266,9 +266,7 @@
     (test-assert "the screenshot exists, its directories created" (file-exists? shot))
     (let ((s (img-load-surface! shot)))
       (receive (px w h) (surface-pixels s)
-        (let ((at (lambda (x y) (let ((i (* 4 (+ x (* y w)))))
-                                  (list (u8vector-ref px i) (u8vector-ref px (+ i 1))
-                                        (u8vector-ref px (+ i 2)) (u8vector-ref px (+ i 3)))))))
+        (let ((at (lambda (x y) (rgba-at px w x y))))
           (test "the screenshot is the output size" '(64 48) (list w h))
           (test "background colour at a free pixel" '(255 0 0 255) (at 2 40))
           (test "the entity's colour where it is (x 10..14, scale 2)" '(0 255 0 255) (at 22 22))
@@ -287,9 +285,7 @@
     (test "headless?: #f overrides the game's #t: a window, no surface" '(#t #f) seen)
     (let ((s (img-load-surface! shot)))
       (receive (px w h) (surface-pixels s)
-        (let ((at (lambda (x y) (let ((i (* 4 (+ x (* y w)))))
-                                  (list (u8vector-ref px i) (u8vector-ref px (+ i 1))
-                                        (u8vector-ref px (+ i 2)))))))
+        (let ((at (lambda (x y) (take (rgba-at px w x y) 3))))
           (test "windowed screenshot: size, background, entity"
                 '((32 24) (255 0 0) (0 255 0))
                 (list (list w h) (at 1 1) (at 11 11)))))

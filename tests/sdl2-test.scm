@@ -3,13 +3,11 @@
 
 (import scheme (chicken base) (chicken file) (chicken string) (chicken gc)
         srfi-4 (downstroke test) (downstroke sdl2))
+(include-relative "pixels.scm")
 
 ;; The pixel at (x, y) of a read-back frame, as (r g b a).
 (define (sdl-pixel frame x y)
-  (receive (px w h) (apply values frame)
-    (let ((i (* 4 (+ x (* y w)))))
-      (list (u8vector-ref px i) (u8vector-ref px (+ i 1))
-            (u8vector-ref px (+ i 2)) (u8vector-ref px (+ i 3))))))
+  (receive (px w h) (apply values frame) (rgba-at px w x y)))
 
 (define (sdl-frame r) (receive (px w h) (render-read-pixels r) (list px w h)))
 

@@ -3,6 +3,7 @@
 
 (import scheme (chicken base) (chicken file) (chicken format) (chicken string)
         (chicken gc) srfi-4 (downstroke test) (downstroke sdl2) (downstroke text))
+(include-relative "pixels.scm")
 
 (init!)
 
@@ -22,11 +23,7 @@
 
 ;; The frame as a procedure (x y) -> (r g b a).
 (define (tx-pixels)
-  (receive (px w h) (render-read-pixels tx-renderer)
-    (lambda (x y)
-      (let ((i (* 4 (+ x (* y w)))))
-        (list (u8vector-ref px i) (u8vector-ref px (+ i 1))
-              (u8vector-ref px (+ i 2)) (u8vector-ref px (+ i 3)))))))
+  (renderer-pixels tx-renderer))
 
 ;; Count the pixels satisfying `pred`, inside and outside the box [x0,x1) x [y0,y1).
 (define (tx-count px pred x0 y0 x1 y1)
