@@ -328,8 +328,7 @@
                    (if (fx= n 0)
                        rest
                        (let ((p (car rest)))
-                         (cond ((not (pair? p)) (cons p (copy (cdr rest) n)))
-                               ((and (eq? p xp) (replaced? xp x)) (cons (cons #:x x) (copy (cdr rest) (fx- n 1))))
+                         (cond ((and (eq? p xp) (replaced? xp x)) (cons (cons #:x x) (copy (cdr rest) (fx- n 1))))
                                ((and (eq? p yp) (replaced? yp y)) (cons (cons #:y y) (copy (cdr rest) (fx- n 1))))
                                ((and (eq? p vxp) (replaced? vxp vx)) (cons (cons #:vx vx) (copy (cdr rest) (fx- n 1))))
                                ((and (eq? p vyp) (replaced? vyp vy)) (cons (cons #:vy vy) (copy (cdr rest) (fx- n 1))))
