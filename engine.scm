@@ -128,28 +128,24 @@
 
   (define (needs? bits need) (not (fx= 0 (fxand bits need))))
 
-  ;; Steps 1-7 of the contract for one entity: none of them reads another
-  ;; entity, so running them back to back per entity gives exactly what
-  ;; seven passes over the list would, with one list built instead of
-  ;; seven. step-motion is steps 2-7 in one pass over the entity.
-  (define (move-entity scene entity dt)
-    (step-motion scene (step-tweens scene entity dt) dt))
-
-  ;; The contract's pipeline, as a pure function of a scene. Ground
-  ;; detection sees every entity after its tile passes; then the bulk
-  ;; steps; then animation. A tween's on-complete may change an entity in
-  ;; any way, so after tweens the needs are read again.
-  ;; Without tweens and without solid entities, ground detection looks only
-  ;; at the entity itself and the map, so it joins the motion pass.
+  ;; The contract's pipeline, as a pure function of a scene.
+  ;; Steps 1-7 read no other entity, so they run back to back per entity
+  ;; (one list built instead of seven): tweens, then the motion pass
+  ;; (steps 2-7 in one walk, see physics.scm). Ground detection sees every
+  ;; entity after its tile passes; then the bulk steps; then animation. A
+  ;; tween's on-complete may change an entity in any way, so after tweens
+  ;; the needs are read again. Without tweens and without solid entities,
+  ;; ground detection looks only at the entity itself and the map, so it
+  ;; joins the motion pass.
   (define (engine-pipeline scene dt)
     (let* ((before (pipeline-needs (scene-entities scene)))
            (tweens? (needs? before need-tweens))
            (ground-in-motion? (and (not tweens?) (needs? before need-ground)
                                    (not (needs? before need-support))))
-           (scene (scene-map-entities scene (cond (tweens? (lambda (s e) (move-entity s e dt)))
-                                                  (ground-in-motion?
-                                                   (lambda (s e) (detect-on-solid s (step-motion s e dt) dt)))
-                                                  (else (lambda (s e) (step-motion s e dt))))))
+           (move (motion-pass scene dt ground-in-motion?))
+           (scene (scene-map-entities scene (if tweens?
+                                                (lambda (s e) (move (step-tweens s e dt)))
+                                                (lambda (s e) (move e)))))
            (needs (if tweens? (pipeline-needs (scene-entities scene)) before)))
       (define (when-needed need step scene) (if (needs? needs need) (step scene) scene))
       (define (ground-pass scene)

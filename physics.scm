@@ -10,7 +10,7 @@
 
 (module (downstroke physics)
   (apply-acceleration apply-gravity apply-velocity-x resolve-tile-collisions-x
-   apply-velocity-y resolve-tile-collisions-y step-motion detect-on-solid
+   apply-velocity-y resolve-tile-collisions-y step-motion motion-pass detect-on-solid
    resolve-entity-collisions sync-groups
    aabb-overlap? entity-tile-cells entity-cell-span tile-push-pos
    entity-solid-support-below? tile-support-below? resolve-pair push-apart
@@ -267,13 +267,21 @@
       (resolve-tiles entity (swept? scene entity) #:y #:height #:vy #:x #:width
                      (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm))))
 
-;; Steps 2-7 of the contract (acceleration, gravity, velocity x, tile
+  ;;; Steps 2-7 in one pass
+
+  ;; Steps 2-7 of the contract (acceleration, gravity, velocity x, tile
   ;; collisions x, velocity y, tile collisions y) for one entity, giving
   ;; exactly what running those six steps one after the other gives (a
   ;; property test compares the two), with one walk of the entity to read it
-  ;; and one copy to write it. An entity that switches steps off with
-  ;; #:skip-pipelines takes the six steps one by one.
+  ;; and one copy to write it. Entities of plain fixnums take motion-pass's
+  ;; faster path below, which gives the same again.
   (define (step-motion scene e dt)
+    ((motion-pass scene dt) e))
+
+  ;; step-motion for any numbers: generic arithmetic, every number checked.
+  ;; An entity that switches steps off with #:skip-pipelines takes the six
+  ;; steps one by one.
+  (define (general-motion scene e dt)
     (entity-let e ((xp #:x) (yp #:y) (wp #:width) (hp #:height) (vxp #:vx) (vyp #:vy)
                    (ayp #:ay) (gp #:gravity?) (skipp #:skip-pipelines) (modep #:collision-mode))
       (if (and skipp (cdr skipp) (not (null? (cdr skipp))))
@@ -310,18 +318,21 @@
                               yp (final yp (or y-stop y1))
                               vxp (if x-stop (final vxp 0) keep)
                               vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy2)) (else keep))
-                              ayp (if accelerate? (final ayp 0) keep)))))))
+                              ayp (if accelerate? (final ayp 0) keep)
+                              #f keep))))))
 
   (define keep (list 'keep))
 
   ;; The entity with the motion keys written: a present key is replaced
   ;; where it is, in a copy that stops after the last one (the rest is
   ;; shared); an absent key goes in front, in the order the steps would add
-  ;; them (with gravity vy, ay, x, vx, y; without x, vx, y, vy).
-  (define (rewrite-motion e grav xp x yp y vxp vx vyp vy ayp ay)
+  ;; them (with gravity vy, ay, x, vx, y; without x, vx, y, vy), and
+  ;; #:on-ground? (ground detection, after them) in front of all.
+  (define (rewrite-motion e grav xp x yp y vxp vx vyp vy ayp ay onp on)
     (define (replaced? p v) (and p (not (eq? v keep))))
     (define (added? p v) (and (not p) (not (eq? v keep))))
-    (let* ((n (fx+ (fx+ (if (replaced? xp x) 1 0) (if (replaced? yp y) 1 0))
+    (let* ((n (fx+ (fx+ (fx+ (if (replaced? xp x) 1 0) (if (replaced? yp y) 1 0))
+                        (if (replaced? onp on) 1 0))
                    (fx+ (fx+ (if (replaced? vxp vx) 1 0) (if (replaced? vyp vy) 1 0))
                         (if (replaced? ayp ay) 1 0))))
            (copy (let copy ((rest e) (n n))
@@ -333,11 +344,13 @@
                                ((and (eq? p vxp) (replaced? vxp vx)) (cons (cons #:vx vx) (copy (cdr rest) (fx- n 1))))
                                ((and (eq? p vyp) (replaced? vyp vy)) (cons (cons #:vy vy) (copy (cdr rest) (fx- n 1))))
                                ((and (eq? p ayp) (replaced? ayp ay)) (cons (cons #:ay ay) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p onp) (replaced? onp on)) (cons (cons #:on-ground? on) (copy (cdr rest) (fx- n 1))))
                                (else (cons p (copy (cdr rest) n))))))))
            (add (lambda (p v key out) (if (added? p v) (cons (cons key v) out) out))))
-      (if grav
-          (add yp y #:y (add vxp vx #:vx (add xp x #:x (add ayp ay #:ay (add vyp vy #:vy copy)))))
-          (add vyp vy #:vy (add yp y #:y (add vxp vx #:vx (add xp x #:x copy)))))))
+      (add onp on #:on-ground?
+           (if grav
+               (add yp y #:y (add vxp vx #:vx (add xp x #:x (add ayp ay #:ay (add vyp vy #:vy copy)))))
+               (add vyp vy #:vy (add yp y #:y (add vxp vx #:vx (add xp x #:x copy))))))))
 
   (define (chain-motion scene e dt)
     (let* ((e (apply-acceleration scene e dt))
@@ -346,6 +359,135 @@
            (e (resolve-tile-collisions-x scene e dt))
            (e (apply-velocity-y scene e dt)))
       (resolve-tile-collisions-y scene e dt)))
+
+  ;;; The motion pass of a frame
+
+  ;; Fixnums small enough that sums and differences of a few of them, and
+  ;; a cell index times a tile size, stay fixnums.
+  (define-inline (small? v)
+    (and (fixnum? v) (fx< v 1099511627776) (fx< -1099511627776 v)))
+  (define-inline (small-size? v)
+    (and (fixnum? v) (fx>= v 0) (fx< v 1099511627776)))
+
+  ;; floor(a / d) for fixnums, d > 0 (fx/ truncates toward zero).
+  (define-inline (fx-floor-div a d)
+    (if (fx>= a 0) (fx/ a d) (fx- (fx/ (fx+ a 1) d) 1)))
+
+  ;; Whether the map cell (col, row) is solid; outside the map it is not.
+  (define-inline (fx-solid? bytes cols rows col0 row0 col row)
+    (let ((c (fx- col col0)) (r (fx- row row0)))
+      (and (fx>= c 0) (fx< c cols) (fx>= r 0) (fx< r rows)
+           (fx= 1 (u8vector-ref bytes (fx+ (fx* r cols) c))))))
+
+  ;; tile-stop and nearest-solid-line for fixnums, with the grid given by
+  ;; its fields (see axis-grid): the same clipping, scan and result.
+  (define-inline (fx-tile-stop v pos size across across-size swept tile tile-across
+                               bytes line-stride cell-stride line-origin cell-origin
+                               line-count cell-count)
+    (let* ((l0 (fx-floor-div pos tile))
+           (l1 (fx-floor-div (fx+ pos (fx- size 1)) tile))
+           (lo (fxmax (fx- (fx-floor-div across tile-across) cell-origin) 0))
+           (hi (fxmin (fx- (fx-floor-div (fx+ across (fx- across-size 1)) tile-across) cell-origin)
+                      (fx- cell-count 1)))
+           (forward? (fx> v 0))
+           (start (and swept (fx- pos v)))
+           (s0 (and swept (fx-floor-div start tile)))
+           (s1 (and swept (fx-floor-div (fx+ start (fx- size 1)) tile)))
+           (from (fx- (if forward?
+                          (if swept (fxmin (fxmax s0 s1) l0) l0)
+                          (if swept (fxmax (fxmin s0 s1) l1) l1))
+                      line-origin))
+           (to (fx- (if forward? l1 l0) line-origin))
+           (last (fx- line-count 1))
+           (from (if forward? (fxmax from 0) (fxmin from last)))
+           (to (if forward? (fxmin to last) (fxmax to 0)))
+           (step (if forward? 1 -1)))
+      (and (fx<= lo hi)
+           (if forward? (fx<= from to) (fx>= from to))
+           (let next-line ((line from))
+             (let ((base (fx* line line-stride)))
+               (let next-cell ((cell lo))
+                 (cond ((fx> cell hi)
+                        (and (not (fx= line to)) (next-line (fx+ line step))))
+                       ((fx= 1 (u8vector-ref bytes (fx+ base (fx* cell cell-stride))))
+                        (let ((line (fx+ line line-origin)))
+                          (if forward?
+                              (fx- (fx* line tile) size)
+                              (fx* (fx+ line 1) tile))))
+                       (else (next-cell (fx+ cell 1))))))))))
+
+  ;; What every entity of a frame shares (the map's solid grid, its tile
+  ;; size, the scene's collision mode) is read from the scene once; then
+  ;; each entity whose numbers are all fixnums well inside the fixnum range
+  ;; (positions and velocities within +-2^40, sizes 0 to 2^40) is moved with
+  ;; fixnum operations only, which no sum can overflow. Any other entity
+  ;; (flonums, rationals, bignums, a NaN, #:skip-pipelines) takes
+  ;; general-motion. Both paths give identical entities: the fast one is
+  ;; the same formulas with fixnum operators.
+  ;; With ground? the pass also does the contract's ground detection, which
+  ;; is only right when no entity of the scene is solid: the engine passes
+  ;; it then, and only then.
+  (define (motion-pass scene dt #!optional ground?)
+    (let* ((tm (scene-tilemap scene))
+           (tw (and tm (tilemap-tile-width tm)))
+           (th (and tm (tilemap-tile-height tm)))
+           (map? (and tm (fixnum? tw) (fixnum? th) (fx> tw 0) (fx> th 0)))
+           (bytes (and map? (tilemap-solid-grid tm)))
+           (cols (if map? (tilemap-width tm) 0))
+           (rows (if map? (tilemap-height tm) 0))
+           (col0 (if map? (tilemap-origin-col tm) 0))
+           (row0 (if map? (tilemap-origin-row tm) 0))
+           (scene-swept (and map? (swept-mode? scene '() #f))))
+      (define (general e)
+        (let ((moved (general-motion scene e dt)))
+          (if ground? (detect-on-solid scene moved dt) moved)))
+      (if (and tm (not map?))
+          general
+          (lambda (e)
+            (entity-let e ((xp #:x) (yp #:y) (wp #:width) (hp #:height) (vxp #:vx) (vyp #:vy)
+                           (ayp #:ay) (gp #:gravity?) (skipp #:skip-pipelines)
+                           (modep #:collision-mode) (onp #:on-ground?))
+              (let ((grav (and gp (cdr gp)))
+                    (x (if xp (cdr xp) 0)) (y (if yp (cdr yp) 0))
+                    (w (if wp (cdr wp) 0)) (h (if hp (cdr hp) 0))
+                    (vx (if vxp (cdr vxp) 0)) (vy0 (if vyp (cdr vyp) 0))
+                    (ay (if ayp (cdr ayp) 0)))
+                (if (and (not (and skipp (cdr skipp) (not (null? (cdr skipp)))))
+                         (small? x) (small? y) (small? vx) (small? vy0)
+                         (small-size? w) (small-size? h)
+                         (or (not grav) (small? ay)))
+                    (let* ((accelerate? (and grav (not (and (fx= ay 0) ayp))))
+                           (vy1 (if accelerate? (fx+ vy0 ay) vy0))
+                           (vy (if grav (fx+ vy1 *gravity*) vy0))
+                           (swept (and map? (let ((own (and modep (cdr modep))))
+                                              (if own (swept-mode? scene e own) scene-swept))))
+                           (x1 (fx+ x vx))
+                           (x-stop (and map? (not (fx= vx 0))
+                                        (fx-tile-stop vx x1 w y h swept tw th
+                                                      bytes 1 cols col0 row0 cols rows)))
+                           (x2 (or x-stop x1))
+                           (y1 (fx+ y vy))
+                           (y-stop (and map? (not (fx= vy 0))
+                                        (fx-tile-stop vy y1 h x2 w swept th tw
+                                                      bytes cols 1 row0 col0 rows cols)))
+                           (y2 (or y-stop y1))
+                           (on (if (and ground? grav)
+                                   (and map?
+                                        (let ((row (fx-floor-div (fx+ (fx+ y2 h) 1) th))
+                                              (c0 (fx-floor-div x2 tw))
+                                              (c1 (fx-floor-div (fx+ x2 (fx- w 1)) tw)))
+                                          (or (fx-solid? bytes cols rows col0 row0 c0 row)
+                                              (fx-solid? bytes cols rows col0 row0 (fxmax c0 c1) row))))
+                                   keep)))
+                      (define (final p v) (if (and p (eq? (cdr p) v)) keep v))
+                      (rewrite-motion e grav
+                                      xp (final xp x2)
+                                      yp (final yp y2)
+                                      vxp (if x-stop (final vxp 0) keep)
+                                      vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy)) (else keep))
+                                      ayp (if accelerate? (final ayp 0) keep)
+                                      onp (if (eq? on keep) keep (final onp on))))
+                    (general e))))))))
 
 ;; Tile ground: the row one pixel below the feet, (+ y h 1), under either
   ;; lower corner. The corners are the first and last columns the body

@@ -167,10 +167,10 @@
                             (cons #:vx vx) (cons #:vy vy) (cons #:solid? #t))
                       movers))))))
 
-;; Velocity x then y is what step-motion does for a body without gravity
+;; Velocity x then y is what the motion pass does for a body without gravity
 ;; in a scene without a map: one pass (as engine-pipeline runs it).
 (define (s2-step scene method)
-  (let ((scene (scene-map-entities scene (lambda (s e) (step-motion s e 16)))))
+  (let ((scene (let ((move (motion-pass scene 16))) (scene-map-entities scene (lambda (s e) (move e))))))
     (scene-transform-entities scene (lambda (es) (resolve-entity-collisions es method)))))
 
 (define (clamp-axis e pos vel)

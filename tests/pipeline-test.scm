@@ -10,7 +10,7 @@
 ;;; skip lists, per-entity collision modes, solids, groups, tweens and
 ;;; animations.
 
-(import scheme (chicken base) (chicken condition) (downstroke test)
+(import scheme (chicken base) (chicken condition) srfi-4 (downstroke test)
         (downstroke entity) (downstroke tilemap) (downstroke scene) (downstroke physics)
         (downstroke tween) (downstroke animation) (downstroke engine))
 
@@ -118,6 +118,77 @@
     (test "an entity that does not move comes back itself" #t
           (let ((e (plist->entity (list #:x 0 #:y 0 #:vx 0 #:vy 0))))
             (eq? e (step-motion scene e 16))))))
+
+;; Fixnum entities take the motion pass's fixnum path: random maps of
+;; several tile sizes, with their origin anywhere, and bodies anywhere
+;; (far outside the map too, and around the path's +-2^40 limit, where
+;; they go back to generic arithmetic).
+(define (pl-origin-map)
+  (let* ((w (+ 1 (pl-rand 14))) (h (+ 1 (pl-rand 14)))
+         (density (pl-pick 5 30 60 80))
+         (data (make-u32vector (* w h) 0)))
+    (do ((i 0 (+ i 1))) ((= i (* w h)))
+      (when (pl-chance density) (u32vector-set! data i 1)))
+    (make-tilemap w h (pl-pick 16 8 10 16 1) (pl-pick 16 8 12 16 1)
+                  (list (make-layer "solid" w h data))
+                  origin-col: (- (pl-rand 12) 6) origin-row: (- (pl-rand 12) 6))))
+
+(define (pl-fixnum range)
+  (case (pl-rand 24)
+    ((0) (pl-pick 1099511627775 -1099511627775 1099511627776 -1099511627776 1099511627700))
+    ((1) (* (pl-pick 1 -1) (pl-rand 100000)))
+    (else (- (pl-rand (* 2 range)) range))))
+
+;; Around the middle of the map, when there is one.
+(define (pl-fixnum-entity k tm)
+  (define (around origin size tile)
+    (+ (* origin tile) (quotient (* size tile) 2) (pl-fixnum (+ 8 (quotient (* size tile) 2)))))
+  (filter-present
+   (list (and (pl-chance 97) (cons #:x (if tm
+                                           (around (tilemap-origin-col tm) (tilemap-width tm) (tilemap-tile-width tm))
+                                           (pl-fixnum 90))))
+         (and (pl-chance 97) (cons #:y (if tm
+                                           (around (tilemap-origin-row tm) (tilemap-height tm) (tilemap-tile-height tm))
+                                           (pl-fixnum 90))))
+         (and (pl-chance 95) (cons #:width (pl-pick 0 1 8 12 16 20 33)))
+         (and (pl-chance 95) (cons #:height (pl-pick 0 1 8 12 16 20 33)))
+         (and (pl-chance 90) (cons #:vx (pl-fixnum 40)))
+         (and (pl-chance 90) (cons #:vy (pl-fixnum 40)))
+         (and (pl-chance 50) (cons #:ay (pl-pick 0 0 -10 3)))
+         (and (pl-chance 70) (cons #:gravity? (pl-pick #t #t #f)))
+         (and (pl-chance 50) (cons #:on-ground? (pl-pick #t #f)))
+         (and (pl-chance 15) (cons #:collision-mode (pl-pick 'swept 'discrete)))
+         (cons #:id k))))
+
+(define (filter-present ps)
+  (cond ((null? ps) '())
+        ((car ps) (cons (car ps) (filter-present (cdr ps))))
+        (else (filter-present (cdr ps)))))
+
+(test-group "the motion pass's fixnum path is the six steps and ground detection"
+  (define no-map (make-scene))
+  (let loop ((k 0) (different 0) (moved 0) (landed 0) (first-difference #f))
+    (if (= k 8000)
+        (begin
+          (test "8000 random fixnum entities: identical results" 0 different)
+          (when first-difference (print "pipeline: first difference " first-difference))
+          (test-assert "most of them moved" (> moved 6000))
+          (test-assert "a tile stopped a fifth of them or more" (> landed 1600)))
+        (let* ((scene (make-scene tilemap: (if (pl-chance 90) (pl-origin-map) #f)
+                                  collision-mode: (pl-pick 'swept 'discrete)))
+               (e (pl-fixnum-entity k (scene-tilemap scene)))
+               (fast (pl-outcome (lambda () ((motion-pass scene 16 #t) e))))
+               (slow (pl-outcome (lambda () (detect-on-solid scene (pl-six-steps scene e) 16)))))
+          (loop (+ k 1)
+                (if (equal? fast slow) different (+ different 1))
+                (if (equal? fast e) moved (+ moved 1))
+                ;; a tile made a difference: without the map it moves on
+                (if (and (pair? fast) (scene-tilemap scene)
+                         (not (equal? (pl-outcome (lambda () (step-motion scene e 16)))
+                                      (pl-outcome (lambda () (step-motion no-map e 16))))))
+                    (+ landed 1)
+                    landed)
+                (or first-difference (and (not (equal? fast slow)) (list e fast slow))))))))
 
 ;; Every step over every entity, as the contract lists them.
 (define (pl-reference-pipeline scene dt)
