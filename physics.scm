@@ -17,7 +17,7 @@
    discrete-safe-speed tunnel-risk?
    *gravity* *jump-force* *entity-ground-contact-tolerance* *entity-ground-vy-max*)
 
-  (import scheme (chicken base) (chicken fixnum) (chicken format) srfi-4
+  (import scheme (chicken base) (chicken fixnum) (chicken format) (chicken foreign) srfi-4
           (downstroke entity) (downstroke scene) (downstroke tilemap)
           (downstroke broadphase))
 
@@ -362,6 +362,126 @@
 
   ;;; The motion pass of a frame
 
+  ;; The fixnum twin of general-motion (and of ground detection), in C.
+  ;; CHICKEN compiles every value-producing conditional and loop of such a
+  ;; body into a closure holding its two dozen live values; those closures
+  ;; cost more than the arithmetic and kept the garbage collector busy.
+  ;; This C allocates nothing: it reads the entity's numbers (fixnums
+  ;; within +-2^40, so no sum overflows) and `flags`, puts the new values
+  ;; in `out` and returns which keys to write (a key that holds its new
+  ;; value already is not written, as in general-motion). Same formulas in
+  ;; the same order; tests/pipeline-test.scm compares the two paths.
+  (foreign-declare #<<EOF
+enum { HAS_MAP = 1, GRAVITY = 2, SWEPT = 4, GROUND = 8,
+       HAS_X = 16, HAS_Y = 32, HAS_VX = 64, HAS_VY = 128, HAS_AY = 256, HAS_ON = 512 };
+enum { WRITE_X = 1, WRITE_Y = 2, WRITE_VX = 4, WRITE_VY = 8, WRITE_AY = 16, WRITE_ON = 32 };
+
+static long ds_floor_div(long a, long d) { return a >= 0 ? a / d : (a + 1) / d - 1; }
+static long ds_min(long a, long b) { return a < b ? a : b; }
+static long ds_max(long a, long b) { return a > b ? a : b; }
+
+/* tile-stop: where a body that moved by v (not 0) to pos stops on one
+   axis, or 0 when no solid line is in its way. Cell (line, cell) of the
+   grid is byte line*ls + cell*cs, both counted from the map's origin. */
+static int ds_tile_stop(long v, long pos, long size, long across, long across_size, int swept,
+                        long tile, long tile_across, const unsigned char *bytes,
+                        long ls, long cs, long line_origin, long cell_origin,
+                        long line_count, long cell_count, long *stop)
+{
+  int forward = v > 0;
+  long l0 = ds_floor_div(pos, tile), l1 = ds_floor_div(pos + size - 1, tile);
+  long lo = ds_max(ds_floor_div(across, tile_across) - cell_origin, 0);
+  long hi = ds_min(ds_floor_div(across + across_size - 1, tile_across) - cell_origin,
+                   cell_count - 1);
+  long from = forward ? l0 : l1, to = forward ? l1 : l0, line, cell;
+  if (swept) {      /* from the line the leading edge was in before the move */
+    long s0 = ds_floor_div(pos - v, tile), s1 = ds_floor_div(pos - v + size - 1, tile);
+    from = forward ? ds_min(ds_max(s0, s1), l0) : ds_max(ds_min(s0, s1), l1);
+  }
+  from -= line_origin;
+  to -= line_origin;
+  from = forward ? ds_max(from, 0) : ds_min(from, line_count - 1);
+  to = forward ? ds_min(to, line_count - 1) : ds_max(to, 0);
+  if (lo > hi || (forward ? from > to : from < to)) return 0;
+  for (line = from; ; line += forward ? 1 : -1) {
+    const unsigned char *base = bytes + line * ls;
+    for (cell = lo; cell <= hi; cell++)
+      if (base[cell * cs] == 1) {
+        long at = line + line_origin;
+        *stop = forward ? at * tile - size : (at + 1) * tile;
+        return 1;
+      }
+    if (line == to) return 0;
+  }
+}
+
+static int ds_solid(const unsigned char *bytes, long cols, long rows, long col0, long row0,
+                    long col, long row)
+{
+  long c = col - col0, r = row - row0;
+  return c >= 0 && c < cols && r >= 0 && r < rows && bytes[r * cols + c] == 1;
+}
+
+/* map is #(cols rows col0 row0 tile-width tile-height). */
+static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word map,
+                               C_word flags_, C_word gravity_,
+                               C_word x_, C_word y_, C_word w_, C_word h_,
+                               C_word vx_, C_word vy_, C_word ay_, C_word on)
+{
+  long flags = C_unfix(flags_), g = C_unfix(gravity_);
+  long x = C_unfix(x_), y = C_unfix(y_), w = C_unfix(w_), h = C_unfix(h_);
+  long vx = C_unfix(vx_), vy0 = C_unfix(vy_), ay = C_unfix(ay_);
+  long cols = C_unfix(C_block_item(map, 0)), rows = C_unfix(C_block_item(map, 1));
+  long col0 = C_unfix(C_block_item(map, 2)), row0 = C_unfix(C_block_item(map, 3));
+  long tw = C_unfix(C_block_item(map, 4)), th = C_unfix(C_block_item(map, 5));
+  int has_map = flags & HAS_MAP, grav = flags & GRAVITY, swept = (flags & SWEPT) != 0;
+  int accelerate = grav && !(ay == 0 && (flags & HAS_AY));
+  long vy = grav ? (accelerate ? vy0 + ay : vy0) + g : vy0;
+  long x2 = x + vx, y2, stop;
+  int x_stopped = 0, y_stopped = 0, writes = 0;
+  if (has_map && vx != 0 &&
+      ds_tile_stop(vx, x2, w, y, h, swept, tw, th, bytes, 1, cols, col0, row0, cols, rows, &stop)) {
+    x_stopped = 1;
+    x2 = stop;
+  }
+  y2 = y + vy;
+  if (has_map && vy != 0 &&
+      ds_tile_stop(vy, y2, h, x2, w, swept, th, tw, bytes, cols, 1, row0, col0, rows, cols, &stop)) {
+    y_stopped = 1;
+    y2 = stop;
+  }
+  if (!((flags & HAS_X) && x == x2)) { C_set_block_item(out, 0, C_fix(x2)); writes |= WRITE_X; }
+  if (!((flags & HAS_Y) && y == y2)) { C_set_block_item(out, 1, C_fix(y2)); writes |= WRITE_Y; }
+  if (x_stopped && !((flags & HAS_VX) && vx == 0)) {
+    C_set_block_item(out, 2, C_fix(0));
+    writes |= WRITE_VX;
+  }
+  if (y_stopped || grav) {
+    long v = y_stopped ? 0 : vy;
+    if (!((flags & HAS_VY) && vy0 == v)) { C_set_block_item(out, 3, C_fix(v)); writes |= WRITE_VY; }
+  }
+  if (accelerate && !((flags & HAS_AY) && ay == 0)) {
+    C_set_block_item(out, 4, C_fix(0));
+    writes |= WRITE_AY;
+  }
+  if ((flags & GROUND) && grav) {   /* the row one pixel below the feet */
+    long row = ds_floor_div(y2 + h + 1, th);
+    long c0 = ds_floor_div(x2, tw), c1 = ds_floor_div(x2 + w - 1, tw);
+    C_word ground = C_mk_bool(has_map &&
+                              (ds_solid(bytes, cols, rows, col0, row0, c0, row) ||
+                               ds_solid(bytes, cols, rows, col0, row0, ds_max(c0, c1), row)));
+    if (!((flags & HAS_ON) && on == ground)) { C_set_block_item(out, 5, ground); writes |= WRITE_ON; }
+  }
+  return C_fix(writes);
+}
+EOF
+)
+
+  (define fixnum-motion!
+    (foreign-lambda scheme-object "ds_fixnum_motion" scheme-object u8vector scheme-object
+                    scheme-object scheme-object scheme-object scheme-object scheme-object
+                    scheme-object scheme-object scheme-object scheme-object scheme-object))
+
   ;; Fixnums small enough that sums and differences of a few of them, and
   ;; a cell index times a tile size, stay fixnums.
   (define-inline (small? v)
@@ -369,75 +489,31 @@
   (define-inline (small-size? v)
     (and (fixnum? v) (fx>= v 0) (fx< v 1099511627776)))
 
-  ;; floor(a / d) for fixnums, d > 0 (fx/ truncates toward zero).
-  (define-inline (fx-floor-div a d)
-    (if (fx>= a 0) (fx/ a d) (fx- (fx/ (fx+ a 1) d) 1)))
-
-  ;; Whether the map cell (col, row) is solid; outside the map it is not.
-  (define-inline (fx-solid? bytes cols rows col0 row0 col row)
-    (let ((c (fx- col col0)) (r (fx- row row0)))
-      (and (fx>= c 0) (fx< c cols) (fx>= r 0) (fx< r rows)
-           (fx= 1 (u8vector-ref bytes (fx+ (fx* r cols) c))))))
-
-  ;; tile-stop and nearest-solid-line for fixnums, with the grid given by
-  ;; its fields (see axis-grid): the same clipping, scan and result.
-  (define-inline (fx-tile-stop v pos size across across-size swept tile tile-across
-                               bytes line-stride cell-stride line-origin cell-origin
-                               line-count cell-count)
-    (let* ((l0 (fx-floor-div pos tile))
-           (l1 (fx-floor-div (fx+ pos (fx- size 1)) tile))
-           (lo (fxmax (fx- (fx-floor-div across tile-across) cell-origin) 0))
-           (hi (fxmin (fx- (fx-floor-div (fx+ across (fx- across-size 1)) tile-across) cell-origin)
-                      (fx- cell-count 1)))
-           (forward? (fx> v 0))
-           (start (and swept (fx- pos v)))
-           (s0 (and swept (fx-floor-div start tile)))
-           (s1 (and swept (fx-floor-div (fx+ start (fx- size 1)) tile)))
-           (from (fx- (if forward?
-                          (if swept (fxmin (fxmax s0 s1) l0) l0)
-                          (if swept (fxmax (fxmin s0 s1) l1) l1))
-                      line-origin))
-           (to (fx- (if forward? l1 l0) line-origin))
-           (last (fx- line-count 1))
-           (from (if forward? (fxmax from 0) (fxmin from last)))
-           (to (if forward? (fxmin to last) (fxmax to 0)))
-           (step (if forward? 1 -1)))
-      (and (fx<= lo hi)
-           (if forward? (fx<= from to) (fx>= from to))
-           (let next-line ((line from))
-             (let ((base (fx* line line-stride)))
-               (let next-cell ((cell lo))
-                 (cond ((fx> cell hi)
-                        (and (not (fx= line to)) (next-line (fx+ line step))))
-                       ((fx= 1 (u8vector-ref bytes (fx+ base (fx* cell cell-stride))))
-                        (let ((line (fx+ line line-origin)))
-                          (if forward?
-                              (fx- (fx* line tile) size)
-                              (fx* (fx+ line 1) tile))))
-                       (else (next-cell (fx+ cell 1))))))))))
-
-  ;; What every entity of a frame shares (the map's solid grid, its tile
-  ;; size, the scene's collision mode) is read from the scene once; then
-  ;; each entity whose numbers are all fixnums well inside the fixnum range
-  ;; (positions and velocities within +-2^40, sizes 0 to 2^40) is moved with
-  ;; fixnum operations only, which no sum can overflow. Any other entity
-  ;; (flonums, rationals, bignums, a NaN, #:skip-pipelines) takes
-  ;; general-motion. Both paths give identical entities: the fast one is
-  ;; the same formulas with fixnum operators.
+  ;; What every entity of a frame shares (the map's solid grid, size and
+  ;; origin, the tile size, the scene's collision mode) is read once. Each
+  ;; entity whose numbers are all small fixnums, with no #:skip-pipelines,
+  ;; then goes through fixnum-motion!; any other one (flonums, rationals,
+  ;; bignums, a NaN, skips, an unknown mode) through general-motion.
   ;; With ground? the pass also does the contract's ground detection, which
   ;; is only right when no entity of the scene is solid: the engine passes
   ;; it then, and only then.
   (define (motion-pass scene dt #!optional ground?)
     (let* ((tm (scene-tilemap scene))
-           (tw (and tm (tilemap-tile-width tm)))
-           (th (and tm (tilemap-tile-height tm)))
-           (map? (and tm (fixnum? tw) (fixnum? th) (fx> tw 0) (fx> th 0)))
-           (bytes (and map? (tilemap-solid-grid tm)))
-           (cols (if map? (tilemap-width tm) 0))
-           (rows (if map? (tilemap-height tm) 0))
-           (col0 (if map? (tilemap-origin-col tm) 0))
-           (row0 (if map? (tilemap-origin-row tm) 0))
-           (scene-swept (and map? (swept-mode? scene '() #f))))
+           (map? (and tm (fixnum? (tilemap-width tm)) (fixnum? (tilemap-height tm))
+                      (fixnum? (tilemap-origin-col tm)) (fixnum? (tilemap-origin-row tm))))
+           (bytes (if map? (tilemap-solid-grid tm) (make-u8vector 0)))
+           (map (if map?
+                    (vector (tilemap-width tm) (tilemap-height tm)
+                            (tilemap-origin-col tm) (tilemap-origin-row tm)
+                            (tilemap-tile-width tm) (tilemap-tile-height tm))
+                    (vector 0 0 0 0 1 1)))
+           ;; the bits of fixnum-motion!'s flags the scene decides
+           (scene-flags (fxior (if map? 1 0)
+                               (fxior (if (and map? (swept-mode? scene '() #f)) 4 0)
+                                      (if ground? 8 0))))
+           (gravity *gravity*)
+           (keep keep)
+           (out (make-vector 6 #f)))
       (define (general e)
         (let ((moved (general-motion scene e dt)))
           (if ground? (detect-on-solid scene moved dt) moved)))
@@ -450,46 +526,37 @@
               (let ((grav (and gp (cdr gp)))
                     (x (if xp (cdr xp) 0)) (y (if yp (cdr yp) 0))
                     (w (if wp (cdr wp) 0)) (h (if hp (cdr hp) 0))
-                    (vx (if vxp (cdr vxp) 0)) (vy0 (if vyp (cdr vyp) 0))
-                    (ay (if ayp (cdr ayp) 0)))
-                (if (and (not (and skipp (cdr skipp) (not (null? (cdr skipp)))))
-                         (small? x) (small? y) (small? vx) (small? vy0)
+                    (vx (if vxp (cdr vxp) 0)) (vy (if vyp (cdr vyp) 0))
+                    (ay (if ayp (cdr ayp) 0))
+                    (own (and modep (cdr modep))))
+                (if (and (or (not skipp) (not (cdr skipp)) (null? (cdr skipp)))
+                         (small? x) (small? y) (small? vx) (small? vy)
                          (small-size? w) (small-size? h)
-                         (or (not grav) (small? ay)))
-                    (let* ((accelerate? (and grav (not (and (fx= ay 0) ayp))))
-                           (vy1 (if accelerate? (fx+ vy0 ay) vy0))
-                           (vy (if grav (fx+ vy1 *gravity*) vy0))
-                           (swept (and map? (let ((own (and modep (cdr modep))))
-                                              (if own (swept-mode? scene e own) scene-swept))))
-                           (x1 (fx+ x vx))
-                           (x-stop (and map? (not (fx= vx 0))
-                                        (fx-tile-stop vx x1 w y h swept tw th
-                                                      bytes 1 cols col0 row0 cols rows)))
-                           (x2 (or x-stop x1))
-                           (y1 (fx+ y vy))
-                           (y-stop (and map? (not (fx= vy 0))
-                                        (fx-tile-stop vy y1 h x2 w swept th tw
-                                                      bytes cols 1 row0 col0 rows cols)))
-                           (y2 (or y-stop y1))
-                           (on (if (and ground? grav)
-                                   (and map?
-                                        (let ((row (fx-floor-div (fx+ (fx+ y2 h) 1) th))
-                                              (c0 (fx-floor-div x2 tw))
-                                              (c1 (fx-floor-div (fx+ x2 (fx- w 1)) tw)))
-                                          (or (fx-solid? bytes cols rows col0 row0 c0 row)
-                                              (fx-solid? bytes cols rows col0 row0 (fxmax c0 c1) row))))
-                                   keep)))
-                      (define (final p v) (if (and p (eq? (cdr p) v)) keep v))
-                      (rewrite-motion e grav
-                                      xp (final xp x2)
-                                      yp (final yp y2)
-                                      vxp (if x-stop (final vxp 0) keep)
-                                      vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy)) (else keep))
-                                      ayp (if accelerate? (final ayp 0) keep)
-                                      onp (if (eq? on keep) keep (final onp on))))
+                         (or (not grav) (small? ay))
+                         ;; an unknown mode is general-motion's error to raise
+                         (memq own '(#f swept discrete)))
+                    (let* ((flags (fxior
+                                   (if own
+                                       (fxior (fxand scene-flags 9) (if (eq? own 'swept) 4 0))
+                                       scene-flags)
+                                   (fxior (fxior (if grav 2 0) (if xp 16 0))
+                                          (fxior (fxior (if yp 32 0) (if vxp 64 0))
+                                                 (fxior (if vyp 128 0)
+                                                        (fxior (if ayp 256 0) (if onp 512 0)))))))
+                           (writes (fixnum-motion! out bytes map flags gravity x y w h vx vy
+                                                   (if grav ay 0) (and onp (cdr onp)))))
+                      (if (fx= writes 0)
+                          e
+                          (rewrite-motion e grav
+                                          xp (if (fx= 0 (fxand writes 1)) keep (vector-ref out 0))
+                                          yp (if (fx= 0 (fxand writes 2)) keep (vector-ref out 1))
+                                          vxp (if (fx= 0 (fxand writes 4)) keep (vector-ref out 2))
+                                          vyp (if (fx= 0 (fxand writes 8)) keep (vector-ref out 3))
+                                          ayp (if (fx= 0 (fxand writes 16)) keep (vector-ref out 4))
+                                          onp (if (fx= 0 (fxand writes 32)) keep (vector-ref out 5)))))
                     (general e))))))))
 
-;; Tile ground: the row one pixel below the feet, (+ y h 1), under either
+  ;; Tile ground: the row one pixel below the feet, (+ y h 1), under either
   ;; lower corner. The corners are the first and last columns the body
   ;; covers; a zero-width body on a tile edge probes the one column at x.
   (define (tile-support-below? entity tm)

@@ -5,7 +5,7 @@
 ;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 steps ...]
 
 (import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
-        (chicken string) (chicken sort)
+        (chicken string) (chicken sort) (chicken gc)
         (downstroke entity) (downstroke scene) (downstroke tilemap)
         (downstroke physics) (downstroke engine) (downstroke tween) (downstroke animation))
 
@@ -56,6 +56,11 @@
          (r (/ (round (* (inexact->exact x) scale)) scale)))
     (number->string (exact->inexact r))))
 
+;; The garbage collector's share of a timed run (terminal only).
+(define (report-gc! gc-ms total-ms)
+  (printf "  run: ~a ms, of which garbage collection ~a ms (~a%)~%" total-ms gc-ms
+          (if (> total-ms 0) (round (/ (* 100 gc-ms) total-ms)) 0)))
+
 (define (sum key es) (foldl (lambda (acc e) (+ acc (entity-ref e key 0))) 0 es))
 
 ;;; S1: platformer crowd.
@@ -101,18 +106,20 @@
            (if (= r runs)
                times
                (let-values (((scene speeds) (s1-scene n mode)))
-                 (let frames ((f 0) (scene scene) (start #f))
+                 (let frames ((f 0) (scene scene) (start #f) (gc-start #f))
                    (cond ((= f 660)
                           (when (= r 0)
                             (let ((es (scene-entities scene)))
                               (printf "checksum S1 ~a n=~a sum-x=~a sum-y=~a on-ground=~a~%"
                                       mode n (sum #:x es) (sum #:y es)
                                       (length (filter-on-ground es)))))
+                          (report-gc! (- (current-gc-milliseconds) gc-start) (- (now) start))
                           (repeat (+ r 1) (cons (- (now) start) times)))
                          (else
-                          (let ((start (if (= f 60) (now) start)))
+                          (let ((start (if (= f 60) (now) start))
+                                (gc-start (if (= f 60) (current-gc-milliseconds) gc-start)))
                             (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f)
-                                    start))))))))))
+                                    start gc-start))))))))))
     (let ((ms (/ (median times) 600.0)))
       (report! "S1" mode n #f 600 ms (/ (* 1000 ms) n) #f #f))))
 
@@ -187,16 +194,18 @@
          (let repeat ((r 0) (times '()))
            (if (= r runs)
                times
-               (let frames ((f 0) (scene (s2-scene n)) (start #f))
+               (let frames ((f 0) (scene (s2-scene n)) (start #f) (gc-start #f))
                  (cond ((= f 660)
                         (when (= r 0)
                           (let ((es (scene-entities scene)))
                             (printf "checksum S2 ~a n=~a sum-x=~a sum-y=~a~%" method n
                                     (sum #:x es) (sum #:y es))))
+                        (report-gc! (- (current-gc-milliseconds) gc-start) (- (now) start))
                         (repeat (+ r 1) (cons (- (now) start) times)))
                        (else
-                        (let ((start (if (= f 60) (now) start)))
-                          (frames (+ f 1) (s2-logic (s2-step scene method)) start)))))))))
+                        (let ((start (if (= f 60) (now) start))
+                              (gc-start (if (= f 60) (current-gc-milliseconds) gc-start)))
+                          (frames (+ f 1) (s2-logic (s2-step scene method)) start gc-start)))))))))
     (let ((ms (/ (median times) 600.0)))
       (report! "S2" method n #f 600 ms (/ (* 1000 ms) n) #f #f))))
 
