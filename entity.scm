@@ -2,7 +2,8 @@
 ;;;
 ;;; An entity is an alist keyed by CHICKEN keywords:
 ;;;   ((#:type . player) (#:x . 100) (#:y . 50) ...)
-;;; Every operation returns a new entity and never changes its argument.
+;;; Every operation returns an entity and never changes its argument (an
+;;; operation that changes nothing may return the argument itself).
 ;;; `entity-set` replaces a key's pair in a copy of the list up to that pair
 ;;; and shares the rest, so an entity never grows by shadowing pairs, however
 ;;; many frames it lives.
@@ -21,15 +22,19 @@
       (if p (cdr p) default)))
 
   ;; Copy the pairs before `key`, replace its pair, share the tail.
-  ;; A key not present yet is added at the front (and nothing is copied).
+  ;; A key not present yet is added at the front (and nothing is copied);
+  ;; a key that holds this very value already gives e itself, so a game
+  ;; that sets a key every frame allocates only when the value changes.
   (define (entity-set e key value)
     (let find ((rest e) (n 0))
       (cond ((null? rest) (cons (cons key value) e))
             ((eq? (caar rest) key)
-             (let copy ((e e) (n n))
-               (if (fx= n 0)
-                   (cons (cons key value) (cdr e))
-                   (cons (car e) (copy (cdr e) (fx- n 1))))))
+             (if (eq? (cdar rest) value)
+                 e
+                 (let copy ((e e) (n n))
+                   (if (fx= n 0)
+                       (cons (cons key value) (cdr e))
+                       (cons (car e) (copy (cdr e) (fx- n 1)))))))
             (else (find (cdr rest) (fx+ n 1))))))
 
   ;; e with its first n+1 pairs copied, the ones whose key is in the plist

@@ -311,17 +311,18 @@
                                            swept (tilemap-tile-height tm) (tilemap-tile-width tm)
                                            (row-grid tm)))))
               ;; What the six steps write, each key with its final value, or
-              ;; `keep` for a key they do not write or that keeps its value.
-              (define (final p v) (if (and p (eqv? (cdr p) v)) keep v))
+              ;; 'keep for a key they do not write or that keeps its value.
+              (define (final p v) (if (and p (eqv? (cdr p) v)) 'keep v))
               (rewrite-motion e grav
                               xp (final xp x2)
                               yp (final yp (or y-stop y1))
-                              vxp (if x-stop (final vxp 0) keep)
-                              vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy2)) (else keep))
-                              ayp (if accelerate? (final ayp 0) keep)
-                              #f keep))))))
+                              vxp (if x-stop (final vxp 0) 'keep)
+                              vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy2)) (else 'keep))
+                              ayp (if accelerate? (final ayp 0) 'keep)
+                              #f 'keep))))))
 
-  (define keep (list 'keep))
+  ;; What rewrite-motion's callers pass for a key they leave as it is: the
+  ;; symbol keep, which no value they write (a number or a boolean) can be.
 
   ;; The entity with the motion keys written: a present key is replaced
   ;; where it is, in a copy that stops after the last one (the rest is
@@ -329,8 +330,8 @@
   ;; them (with gravity vy, ay, x, vx, y; without x, vx, y, vy), and
   ;; #:on-ground? (ground detection, after them) in front of all.
   (define (rewrite-motion e grav xp x yp y vxp vx vyp vy ayp ay onp on)
-    (define (replaced? p v) (and p (not (eq? v keep))))
-    (define (added? p v) (and (not p) (not (eq? v keep))))
+    (define (replaced? p v) (and p (not (eq? v 'keep))))
+    (define (added? p v) (and (not p) (not (eq? v 'keep))))
     (let* ((n (fx+ (fx+ (fx+ (if (replaced? xp x) 1 0) (if (replaced? yp y) 1 0))
                         (if (replaced? onp on) 1 0))
                    (fx+ (fx+ (if (replaced? vxp vx) 1 0) (if (replaced? vyp vy) 1 0))
@@ -512,7 +513,6 @@ EOF
                                (fxior (if (and map? (swept-mode? scene '() #f)) 4 0)
                                       (if ground? 8 0))))
            (gravity *gravity*)
-           (keep keep)
            (out (make-vector 6 #f)))
       (define (general e)
         (let ((moved (general-motion scene e dt)))
@@ -536,9 +536,9 @@ EOF
                          ;; an unknown mode is general-motion's error to raise
                          (memq own '(#f swept discrete)))
                     (let* ((flags (fxior
-                                   (if own
-                                       (fxior (fxand scene-flags 9) (if (eq? own 'swept) 4 0))
-                                       scene-flags)
+                                   ;; an entity's own mode replaces the scene's (bit 4)
+                                   (fxior (fxand scene-flags (if own 9 15))
+                                          (if (eq? own 'swept) 4 0))
                                    (fxior (fxior (if grav 2 0) (if xp 16 0))
                                           (fxior (fxior (if yp 32 0) (if vxp 64 0))
                                                  (fxior (if vyp 128 0)
@@ -548,12 +548,12 @@ EOF
                       (if (fx= writes 0)
                           e
                           (rewrite-motion e grav
-                                          xp (if (fx= 0 (fxand writes 1)) keep (vector-ref out 0))
-                                          yp (if (fx= 0 (fxand writes 2)) keep (vector-ref out 1))
-                                          vxp (if (fx= 0 (fxand writes 4)) keep (vector-ref out 2))
-                                          vyp (if (fx= 0 (fxand writes 8)) keep (vector-ref out 3))
-                                          ayp (if (fx= 0 (fxand writes 16)) keep (vector-ref out 4))
-                                          onp (if (fx= 0 (fxand writes 32)) keep (vector-ref out 5)))))
+                                          xp (if (fx= 0 (fxand writes 1)) 'keep (vector-ref out 0))
+                                          yp (if (fx= 0 (fxand writes 2)) 'keep (vector-ref out 1))
+                                          vxp (if (fx= 0 (fxand writes 4)) 'keep (vector-ref out 2))
+                                          vyp (if (fx= 0 (fxand writes 8)) 'keep (vector-ref out 3))
+                                          ayp (if (fx= 0 (fxand writes 16)) 'keep (vector-ref out 4))
+                                          onp (if (fx= 0 (fxand writes 32)) 'keep (vector-ref out 5)))))
                     (general e))))))))
 
   ;; Tile ground: the row one pixel below the feet, (+ y h 1), under either

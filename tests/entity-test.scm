@@ -15,6 +15,10 @@
     (test "entity-set shares the tail after the key" #t
           (eq? (cddr e) (cddr (entity-set e #:x 1))))
     (test "entity-set adds a missing key at the front" '(#:vx . 3) (car (entity-set e #:vx 3)))
+    (test "entity-set to the value held already gives the entity itself" #t
+          (eq? e (entity-set e #:y 50)))
+    (test "entity-set to an equal but not eq? value copies" #f
+          (eq? e (entity-set e #:tags (list 'player 'hero))))
     (test "entity-update" 101 (entity-ref (entity-update e #:x (lambda (x) (+ x 1))) #:x))
     (test "entity-update with default" 1 (entity-ref (entity-update e #:vx (lambda (v) (+ v 1)) 0) #:vx))
     (test "entity-remove" '(#:type #:y #:tags) (map car (entity-remove e #:x)))
