@@ -24,13 +24,24 @@
 
   (define (->integer v) (if (exact? v) v (inexact->exact v)))
   ;; floor(v / size); integers the common case, without making a rational.
+  ;; An exact v = n/d (bodies pushed apart by halves soon have such
+  ;; coordinates) with an integer size is floor(n / (d size)): integer
+  ;; division, no new rational.
   (define (cell-of v size)
-    (if (and (fixnum? v) (fixnum? size))
-        (if (fx>= v 0) (fx/ v size) (fx- (fx/ (fx+ v 1) size) 1))
-        (->integer (floor (/ v size)))))
+    (cond ((and (fixnum? v) (fixnum? size))
+           (if (fx>= v 0) (fx/ v size) (fx- (fx/ (fx+ v 1) size) 1)))
+          ((and (exact? v) (exact-integer? size))
+           (integer-floor (numerator v) (* (denominator v) size)))
+          (else (->integer (floor (/ v size))))))
+
+  ;; floor(a / b) for integers, b > 0.
+  (define (integer-floor a b)
+    (let ((q (quotient a b)))
+      (if (and (negative? a) (not (zero? (remainder a b)))) (- q 1) q)))
 
   ;; n boxes numbered 0..n-1; (box k) returns the current (values x y w h);
-  ;; (visit! p q) may move boxes p and q.
+  ;; (visit! p q) may move boxes p and q, and returns true when it did
+  ;; (only then are their cells looked at again).
   (define (visit-pairs-in-order n box visit!)
     (let* ((size (cell-size n box))
            (buckets (make-vector (bucket-count n) '()))
@@ -80,41 +91,41 @@
       ;; Add to the ascending `queue` every box after `after` sharing a cell
       ;; with p, or large, not yet queued in row p.
       (define (gather p after queue)
-        (let ((add (lambda (q queue)
-                     (if (and (fx> q after) (not (fx= (vector-ref stamp q) p)))
-                         (begin (vector-set! stamp q p) (insert q queue))
-                         queue))))
-          (let ((queue (let loop ((ls large) (queue queue))
-                         (if (null? ls) queue (loop (cdr ls) (add (car ls) queue))))))
-            (let ((span (vector-ref spans p)))
-              (let ((result queue))
-                (for-each-cell span
-                               (lambda (b)
-                                 (let loop ((ls (vector-ref buckets b)))
-                                   (unless (null? ls)
-                                     (set! result (add (car ls) result))
-                                     (loop (cdr ls))))))
-                result)))))
+        (define (add-all ls queue)
+          (if (null? ls)
+              queue
+              (add-all (cdr ls)
+                       (let ((q (car ls)))
+                         (if (and (fx> q after) (not (fx= (vector-ref stamp q) p)))
+                             (begin (vector-set! stamp q p) (insert q queue))
+                             queue)))))
+        (let ((span (vector-ref spans p)))
+          (let rows ((cy (vector-ref span 1)) (queue (add-all large queue)))
+            (if (> cy (vector-ref span 3))
+                queue
+                (let cols ((cx (vector-ref span 0)) (queue queue))
+                  (if (> cx (vector-ref span 2))
+                      (rows (+ cy 1) queue)
+                      (cols (+ cx 1) (add-all (vector-ref buckets (bucket cx cy)) queue))))))))
       (do ((k 0 (fx+ k 1))) ((fx= k n)) (register! k (span-of k)))
       (do ((p 0 (fx+ p 1))) ((fx= p n))
         (if (eq? (vector-ref spans p) 'large)
             ;; a large box meets everyone after it
             (do ((q (fx+ p 1) (fx+ q 1))) ((fx= q n))
-              (visit! p q)
-              (refresh! q)
-              (refresh! p))
+              (when (visit! p q)
+                (refresh! q)
+                (refresh! p)))
             (let row ((queue (gather p p '())))
               (unless (null? queue)
-                (let ((q (car queue)))
-                  (visit! p q)
-                  (refresh! q)
-                  (row (if (and (refresh! p) (not (eq? (vector-ref spans p) 'large)))
-                           (gather p q (cdr queue))
-                           (if (eq? (vector-ref spans p) 'large)
-                               ;; p grew large mid-row: everyone after q
-                               (let tail ((r (- n 1)) (out '()))
-                                 (if (fx<= r q) out (tail (fx- r 1) (cons r out))))
-                               (cdr queue)))))))))))
+                (let* ((q (car queue))
+                       (moved? (visit! p q)))
+                  (when moved? (refresh! q))
+                  (row (cond ((not (and moved? (refresh! p))) (cdr queue))
+                             ((eq? (vector-ref spans p) 'large)
+                              ;; p grew large mid-row: everyone after q
+                              (let tail ((r (- n 1)) (out '()))
+                                (if (fx<= r q) out (tail (fx- r 1) (cons r out)))))
+                             (else (gather p q (cdr queue))))))))))))
 
   ;; Cells about twice the mean box size keep a few boxes per cell.
   (define (cell-size n box)

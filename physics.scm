@@ -614,9 +614,25 @@ EOF
   ;;; Entity against entity
 
   ;; Strict overlap: rectangles that only share an edge do not overlap.
+  ;; Exact rationals (bodies pushed apart by halves) make each comparison
+  ;; a multiplication of big integers, so boxes at least a pixel apart
+  ;; are told apart first by the integer parts of their coordinates.
   (define (aabb-overlap? x1 y1 w1 h1 x2 y2 w2 h2)
-    (and (< x1 (+ x2 w2)) (< x2 (+ x1 w1))
+    (and (not (apart-on-axis? x1 w1 x2 w2))
+         (not (apart-on-axis? y1 h1 y2 h2))
+         (< x1 (+ x2 w2)) (< x2 (+ x1 w1))
          (< y1 (+ y2 h2)) (< y2 (+ y1 h1))))
+
+  ;; Whether the spans [p1, p1+s1) and [p2, p2+s2) certainly do not meet,
+  ;; judged by floor(p1) and floor(p2) when both are exact and both sizes
+  ;; integers: p1 >= floor(p1) >= floor(p2) + 1 + s2 > p2 + s2. #f means
+  ;; "not certain", and the exact comparison decides.
+  (define (apart-on-axis? p1 s1 p2 s2)
+    (and (exact? p1) (exact? p2) (exact-integer? s1) (exact-integer? s2)
+         (not (and (fixnum? p1) (fixnum? p2)))   ; integers compare fast anyway
+         (let ((f1 (floor-div (numerator p1) (denominator p1)))
+               (f2 (floor-div (numerator p2) (denominator p2))))
+           (or (>= f1 (+ f2 1 s2)) (>= f2 (+ f1 1 s1))))))
 
   (define (overlap-1d p1 s1 p2 s2)
     (- (min (+ p1 s1) (+ p2 s2)) (max p1 p2)))
@@ -716,11 +732,15 @@ EOF
                         ((collides? (vector-ref all i)) (loop (- i 1) (cons i out)))
                         (else (loop (- i 1) out)))))
            (n (vector-length idx)))
+      ;; true when the pair moved
       (define (visit! p q)
-        (let ((i (vector-ref idx p)) (j (vector-ref idx q)))
-          (let-values (((a b) (resolve-colliding-pair (vector-ref all i) (vector-ref all j))))
-            (vector-set! all i a)
-            (vector-set! all j b))))
+        (let* ((i (vector-ref idx p)) (j (vector-ref idx q))
+               (a0 (vector-ref all i)) (b0 (vector-ref all j)))
+          (let-values (((a b) (resolve-colliding-pair a0 b0)))
+            (and (not (and (eq? a a0) (eq? b b0)))
+                 (begin (vector-set! all i a)
+                        (vector-set! all j b)
+                        #t)))))
       (define (box p)
         (let ((e (vector-ref all (vector-ref idx p))))
           (values (num e #:x) (num e #:y) (num e #:width) (num e #:height))))
