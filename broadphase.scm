@@ -34,6 +34,14 @@
            (integer-floor (numerator v) (* (denominator v) size)))
           (else (->integer (floor (/ v size))))))
 
+  ;; (cell-of (+ v w) size); for v = n/d and integers w and size that is
+  ;; floor((n + w d) / (d size)), without making the rational v + w.
+  (define (end-cell v w size)
+    (if (and (not (fixnum? v)) (exact? v) (exact-integer? w) (exact-integer? size))
+        (let ((d (denominator v)))
+          (integer-floor (+ (numerator v) (* w d)) (* d size)))
+        (cell-of (+ v w) size)))
+
   ;; floor(a / b) for integers, b > 0.
   (define (integer-floor a b)
     (let ((q (quotient a b)))
@@ -55,7 +63,7 @@
       (define (span-of k)
         (let-values (((x y w h) (box k)))
           (let ((cx0 (cell-of x size)) (cy0 (cell-of y size))
-                (cx1 (cell-of (+ x w) size)) (cy1 (cell-of (+ y h) size)))
+                (cx1 (end-cell x w size)) (cy1 (end-cell y h size)))
             (if (or (> (- cx1 cx0) large-span) (> (- cy1 cy0) large-span))
                 'large
                 (vector cx0 cy0 cx1 cy1)))))
@@ -82,8 +90,8 @@
             (if (and (vector? old)
                      (eqv? (vector-ref old 0) (cell-of x size))
                      (eqv? (vector-ref old 1) (cell-of y size))
-                     (eqv? (vector-ref old 2) (cell-of (+ x w) size))
-                     (eqv? (vector-ref old 3) (cell-of (+ y h) size)))
+                     (eqv? (vector-ref old 2) (end-cell x w size))
+                     (eqv? (vector-ref old 3) (end-cell y h size)))
                 #f
                 (let ((new (span-of k)))
                   (and (not (equal? old new))

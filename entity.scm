@@ -185,7 +185,7 @@
   ;; infinity or a non-number is an error naming the entity and the key,
   ;; raised before anything is written, so no step is half-applied.
   (define (check-entity-number e key v)
-    (if (and (real? v) (finite? v))
+    (if (and (real? v) (or (exact? v) (finite? v)))   ; exact numbers are finite
         v
         (error 'downstroke
                (sprintf "entity ~a: ~s is ~s, not a finite real number"

@@ -182,6 +182,16 @@
   (test-assert "sharing an edge is not overlapping" (not (aabb-overlap? 0 0 10 10 10 0 10 10)))
   (test-assert "sharing a corner is not overlapping" (not (aabb-overlap? 0 0 10 10 10 10 10 10)))
   (test-assert "contained" (aabb-overlap? 0 0 10 10 2 2 1 1))
+  ;; exact rationals less than a pixel apart: the integer-part shortcut
+  ;; must leave these to the exact comparison
+  (test-assert "rationals a quarter pixel into each other"
+               (aabb-overlap? 1/2 0 8 1 33/4 0 8 1))
+  (test-assert "rationals sharing an edge" (not (aabb-overlap? 1/2 0 8 1 17/2 0 8 1)))
+  (test-assert "negative rationals overlapping" (aabb-overlap? -1/2 0 8 1 -33/4 0 8 1))
+  (test-assert "negative rationals a quarter pixel apart"
+               (not (aabb-overlap? -1/2 0 8 1 -35/4 0 8 1)))
+  (test-assert "rationals far apart on y only" (not (aabb-overlap? 1/3 1/3 8 8 1/3 100/3 8 8)))
+  (test-assert "a rational and an integer overlapping" (aabb-overlap? 7/2 0 1 1 3 0 1 1))
   (test-assert "apart on y" (not (aabb-overlap? 0 0 10 10 0 20 10 10))))
 
 (test-group "2.4.2 resolve-entity-collisions"
