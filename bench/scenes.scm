@@ -56,6 +56,13 @@
          (r (/ (round (* (inexact->exact x) scale)) scale)))
     (number->string (exact->inexact r))))
 
+;; The start of a timed run. current-gc-milliseconds counts the time of
+;; major collections since it was last called: calling it here starts
+;; that count too, and report-gc! reads it at the end.
+(define (start-timing!)
+  (current-gc-milliseconds)
+  (now))
+
 ;; The garbage collector's share of a timed run (terminal only).
 (define (report-gc! gc-ms total-ms)
   (printf "  run: ~a ms, of which garbage collection ~a ms (~a%)~%" total-ms gc-ms
@@ -106,20 +113,19 @@
            (if (= r runs)
                times
                (let-values (((scene speeds) (s1-scene n mode)))
-                 (let frames ((f 0) (scene scene) (start #f) (gc-start #f))
+                 (let frames ((f 0) (scene scene) (start #f))
                    (cond ((= f 660)
                           (when (= r 0)
                             (let ((es (scene-entities scene)))
                               (printf "checksum S1 ~a n=~a sum-x=~a sum-y=~a on-ground=~a~%"
                                       mode n (sum #:x es) (sum #:y es)
                                       (length (filter-on-ground es)))))
-                          (report-gc! (- (current-gc-milliseconds) gc-start) (- (now) start))
+                          (report-gc! (current-gc-milliseconds) (- (now) start))
                           (repeat (+ r 1) (cons (- (now) start) times)))
                          (else
-                          (let ((start (if (= f 60) (now) start))
-                                (gc-start (if (= f 60) (current-gc-milliseconds) gc-start)))
+                          (let ((start (if (= f 60) (start-timing!) start)))
                             (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f)
-                                    start gc-start))))))))))
+                                    start))))))))))
     (let ((ms (/ (median times) 600.0)))
       (report! "S1" mode n #f 600 ms (/ (* 1000 ms) n) #f #f))))
 
@@ -194,18 +200,17 @@
          (let repeat ((r 0) (times '()))
            (if (= r runs)
                times
-               (let frames ((f 0) (scene (s2-scene n)) (start #f) (gc-start #f))
+               (let frames ((f 0) (scene (s2-scene n)) (start #f))
                  (cond ((= f 660)
                         (when (= r 0)
                           (let ((es (scene-entities scene)))
                             (printf "checksum S2 ~a n=~a sum-x=~a sum-y=~a~%" method n
                                     (sum #:x es) (sum #:y es))))
-                        (report-gc! (- (current-gc-milliseconds) gc-start) (- (now) start))
+                        (report-gc! (current-gc-milliseconds) (- (now) start))
                         (repeat (+ r 1) (cons (- (now) start) times)))
                        (else
-                        (let ((start (if (= f 60) (now) start))
-                              (gc-start (if (= f 60) (current-gc-milliseconds) gc-start)))
-                          (frames (+ f 1) (s2-logic (s2-step scene method)) start gc-start)))))))))
+                        (let ((start (if (= f 60) (start-timing!) start)))
+                          (frames (+ f 1) (s2-logic (s2-step scene method)) start)))))))))
     (let ((ms (/ (median times) 600.0)))
       (report! "S2" method n #f 600 ms (/ (* 1000 ms) n) #f #f))))
 
