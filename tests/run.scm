@@ -9,6 +9,13 @@
 (unless (get-environment-variable "DOWNSTROKE_MAKE")
   (repository-path (cons ".." (repository-path))))
 
+;; The suites run headless however they are started: SDL's dummy video and
+;; audio drivers unless the caller chose others (`make test` sets the same).
+(unless (get-environment-variable "SDL_VIDEODRIVER")
+  (set-environment-variable! "SDL_VIDEODRIVER" "dummy"))
+(unless (get-environment-variable "SDL_AUDIODRIVER")
+  (set-environment-variable! "SDL_AUDIODRIVER" "dummy"))
+
 (import (downstroke test))
 
 (import (chicken string))
