@@ -138,11 +138,12 @@
                           (+ line (grid-line-origin g)))
                          (else (next-cell (fx+ cell 1)))))))))))
 
-  ;; The solid grid of a map, walked by columns (the x pass) or rows (y).
-  ;; Every body of a frame asks about the same map: the views of the last
-  ;; map asked about are kept (a tilemap is immutable, and its solid grid
-  ;; is made once).
-  (define last-grids (cons #f #f))      ; (tilemap . #(columns rows))
+  ;; The solid grid of a map, walked by columns (the x pass) or rows (y),
+  ;; and the map as the motion pass's C code reads it (below). Every body
+  ;; of a frame asks about the same map: the views of the last map asked
+  ;; about are kept (a tilemap is immutable, and its solid grid is made
+  ;; once).
+  (define last-grids (cons #f #f))      ; (tilemap . #(columns rows pass-map))
 
   (define (grids tm)
     (if (eq? (car last-grids) tm)
@@ -153,12 +154,20 @@
                                            (tilemap-width tm) (tilemap-height tm))
                            (make-axis-grid bytes (tilemap-width tm) 1
                                            (tilemap-origin-row tm) (tilemap-origin-col tm)
-                                           (tilemap-height tm) (tilemap-width tm)))))
+                                           (tilemap-height tm) (tilemap-width tm))
+                           (and (fixnum? (tilemap-width tm)) (fixnum? (tilemap-height tm))
+                                (fixnum? (tilemap-origin-col tm)) (fixnum? (tilemap-origin-row tm))
+                                (vector (tilemap-width tm) (tilemap-height tm)
+                                        (tilemap-origin-col tm) (tilemap-origin-row tm)
+                                        (tilemap-tile-width tm) (tilemap-tile-height tm))))))
             (set! last-grids (cons tm v))
             v))))
 
   (define (column-grid tm) (vector-ref (grids tm) 0))
   (define (row-grid tm) (vector-ref (grids tm) 1))
+  ;; #(cols rows origin-col origin-row tile-width tile-height), or #f for a
+  ;; map whose size or origin is not a fixnum (the C code cannot take it).
+  (define (pass-map tm) (vector-ref (grids tm) 2))
 
   ;;; Per-entity steps, in pipeline order
 
@@ -483,6 +492,10 @@ EOF
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object scheme-object scheme-object scheme-object scheme-object))
 
+  ;; What the C code is given in a scene without a map (it reads neither).
+  (define no-grid (make-u8vector 0))
+  (define no-map (vector 0 0 0 0 1 1))
+
   ;; Fixnums small enough that sums and differences of a few of them, and
   ;; a cell index times a tile size, stay fixnums.
   (define-inline (small? v)
@@ -500,14 +513,10 @@ EOF
   ;; it then, and only then.
   (define (motion-pass scene dt #!optional ground?)
     (let* ((tm (scene-tilemap scene))
-           (map? (and tm (fixnum? (tilemap-width tm)) (fixnum? (tilemap-height tm))
-                      (fixnum? (tilemap-origin-col tm)) (fixnum? (tilemap-origin-row tm))))
-           (bytes (if map? (tilemap-solid-grid tm) (make-u8vector 0)))
-           (map (if map?
-                    (vector (tilemap-width tm) (tilemap-height tm)
-                            (tilemap-origin-col tm) (tilemap-origin-row tm)
-                            (tilemap-tile-width tm) (tilemap-tile-height tm))
-                    (vector 0 0 0 0 1 1)))
+           (map-data (and tm (pass-map tm)))
+           (map? (and map-data #t))
+           (bytes (if map? (tilemap-solid-grid tm) no-grid))
+           (map (or map-data no-map))
            ;; the bits of fixnum-motion!'s flags the scene decides
            (scene-flags (fxior (if map? 1 0)
                                (fxior (if (and map? (swept-mode? scene '() #f)) 4 0)
