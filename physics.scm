@@ -383,7 +383,8 @@
   ;; the same order; tests/pipeline-test.scm compares the two paths.
   (foreign-declare #<<EOF
 enum { HAS_MAP = 1, GRAVITY = 2, SWEPT = 4, GROUND = 8,
-       HAS_X = 16, HAS_Y = 32, HAS_VX = 64, HAS_VY = 128, HAS_AY = 256, HAS_ON = 512 };
+       HAS_X = 16, HAS_Y = 32, HAS_VX = 64, HAS_VY = 128, HAS_AY = 256, HAS_ON = 512,
+       NOT_HERE = 1024 };
 enum { WRITE_X = 1, WRITE_Y = 2, WRITE_VX = 4, WRITE_VY = 8, WRITE_AY = 16, WRITE_ON = 32 };
 
 static long ds_floor_div(long a, long d) { return a >= 0 ? a / d : (a + 1) / d - 1; }
@@ -433,12 +434,29 @@ static int ds_solid(const unsigned char *bytes, long cols, long rows, long col0,
 }
 
 /* map is #(cols rows col0 row0 tile-width tile-height). */
+/* Fixnums below this stay fixnums, and fit a long, through the sums below:
+   2^40 on 64-bit CHICKEN (62-bit fixnums), 2^27 on 32-bit (30-bit). */
+#ifdef C_SIXTY_FOUR
+# define DS_LIMIT (1L << 40)
+#else
+# define DS_LIMIT (1L << 27)
+#endif
+#define DS_SMALL(o) (C_truep(C_fixnump(o)) && C_unfix(o) < DS_LIMIT && C_unfix(o) > -DS_LIMIT)
+#define DS_SIZE(o) (C_truep(C_fixnump(o)) && C_unfix(o) >= 0 && C_unfix(o) < DS_LIMIT)
+
+/* -1 when this entity is not for this code (a number that is not a small
+   fixnum, a non-empty #:skip-pipelines, an unknown mode: NOT_HERE), else
+   the keys to write. */
 static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word map,
-                               C_word flags_, C_word gravity_,
+                               C_word flags_, C_word gravity_, C_word skips,
                                C_word x_, C_word y_, C_word w_, C_word h_,
                                C_word vx_, C_word vy_, C_word ay_, C_word on)
 {
   long flags = C_unfix(flags_), g = C_unfix(gravity_);
+  if ((flags & NOT_HERE) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST) ||
+      !(DS_SMALL(x_) && DS_SMALL(y_) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
+        DS_SIZE(w_) && DS_SIZE(h_) && (!(flags & GRAVITY) || DS_SMALL(ay_))))
+    return C_fix(-1);
   long x = C_unfix(x_), y = C_unfix(y_), w = C_unfix(w_), h = C_unfix(h_);
   long vx = C_unfix(vx_), vy0 = C_unfix(vy_), ay = C_unfix(ay_);
   long cols = C_unfix(C_block_item(map, 0)), rows = C_unfix(C_block_item(map, 1));
@@ -490,18 +508,12 @@ EOF
   (define fixnum-motion!
     (foreign-lambda scheme-object "ds_fixnum_motion" scheme-object u8vector scheme-object
                     scheme-object scheme-object scheme-object scheme-object scheme-object
-                    scheme-object scheme-object scheme-object scheme-object scheme-object))
+                    scheme-object scheme-object scheme-object scheme-object scheme-object
+                    scheme-object))
 
   ;; What the C code is given in a scene without a map (it reads neither).
   (define no-grid (make-u8vector 0))
   (define no-map (vector 0 0 0 0 1 1))
-
-  ;; Fixnums small enough that sums and differences of a few of them, and
-  ;; a cell index times a tile size, stay fixnums.
-  (define-inline (small? v)
-    (and (fixnum? v) (fx< v 1099511627776) (fx< -1099511627776 v)))
-  (define-inline (small-size? v)
-    (and (fixnum? v) (fx>= v 0) (fx< v 1099511627776)))
 
   ;; What every entity of a frame shares (the map's solid grid, size and
   ;; origin, the tile size, the scene's collision mode) is read once. Each
@@ -538,32 +550,30 @@ EOF
                     (vx (if vxp (cdr vxp) 0)) (vy (if vyp (cdr vyp) 0))
                     (ay (if ayp (cdr ayp) 0))
                     (own (and modep (cdr modep))))
-                (if (and (or (not skipp) (not (cdr skipp)) (null? (cdr skipp)))
-                         (small? x) (small? y) (small? vx) (small? vy)
-                         (small-size? w) (small-size? h)
-                         (or (not grav) (small? ay))
-                         ;; an unknown mode is general-motion's error to raise
-                         (memq own '(#f swept discrete)))
-                    (let* ((flags (fxior
-                                   ;; an entity's own mode replaces the scene's (bit 4)
-                                   (fxior (fxand scene-flags (if own 9 15))
-                                          (if (eq? own 'swept) 4 0))
-                                   (fxior (fxior (if grav 2 0) (if xp 16 0))
-                                          (fxior (fxior (if yp 32 0) (if vxp 64 0))
-                                                 (fxior (if vyp 128 0)
-                                                        (fxior (if ayp 256 0) (if onp 512 0)))))))
-                           (writes (fixnum-motion! out bytes map flags gravity x y w h vx vy
-                                                   (if grav ay 0) (and onp (cdr onp)))))
-                      (if (fx= writes 0)
-                          e
-                          (rewrite-motion e grav
-                                          xp (if (fx= 0 (fxand writes 1)) 'keep (vector-ref out 0))
-                                          yp (if (fx= 0 (fxand writes 2)) 'keep (vector-ref out 1))
-                                          vxp (if (fx= 0 (fxand writes 4)) 'keep (vector-ref out 2))
-                                          vyp (if (fx= 0 (fxand writes 8)) 'keep (vector-ref out 3))
-                                          ayp (if (fx= 0 (fxand writes 16)) 'keep (vector-ref out 4))
-                                          onp (if (fx= 0 (fxand writes 32)) 'keep (vector-ref out 5)))))
-                    (general e))))))))
+                ;; Written as plain expressions, not nested conditionals, so
+                ;; that CHICKEN makes no closures here (see above).
+                (let* ((flags (fxior
+                               ;; an entity's own mode replaces the scene's (bit 4);
+                               ;; an unknown one is general-motion's error to raise
+                               (fxior (fxand scene-flags (if own 9 15))
+                                      (fxior (if (eq? own 'swept) 4 0)
+                                             (if (memq own '(#f swept discrete)) 0 1024)))
+                               (fxior (fxior (if grav 2 0) (if xp 16 0))
+                                      (fxior (fxior (if yp 32 0) (if vxp 64 0))
+                                             (fxior (if vyp 128 0)
+                                                    (fxior (if ayp 256 0) (if onp 512 0)))))))
+                       (writes (fixnum-motion! out bytes map flags gravity (and skipp (cdr skipp))
+                                               x y w h vx vy ay (and onp (cdr onp)))))
+                  (cond ((fx= writes 0) e)
+                        ((fx< writes 0) (general e))
+                        (else
+                         (rewrite-motion e grav
+                                         xp (if (fx= 0 (fxand writes 1)) 'keep (vector-ref out 0))
+                                         yp (if (fx= 0 (fxand writes 2)) 'keep (vector-ref out 1))
+                                         vxp (if (fx= 0 (fxand writes 4)) 'keep (vector-ref out 2))
+                                         vyp (if (fx= 0 (fxand writes 8)) 'keep (vector-ref out 3))
+                                         ayp (if (fx= 0 (fxand writes 16)) 'keep (vector-ref out 4))
+                                         onp (if (fx= 0 (fxand writes 32)) 'keep (vector-ref out 5))))))))))))
 
   ;; Tile ground: the row one pixel below the feet, (+ y h 1), under either
   ;; lower corner. The corners are the first and last columns the body
