@@ -40,11 +40,15 @@
 
   ;; The hot path reads a dozen numbers per entity per step: inlined, with
   ;; the fixnum case first (what entity-number does, without the call).
+  ;; read-number: the number in e's pair p for key (0 when e has no such
+  ;; pair); num: the number e holds for key.
+  (define-inline (read-number e p key)
+    (if p
+        (let ((v (cdr p))) (if (fixnum? v) v (check-entity-number e key v)))
+        0))
+
   (define-inline (num e key)
-    (let ((p (assq key e)))
-      (if p
-          (let ((v (cdr p))) (if (fixnum? v) v (check-entity-number e key v)))
-          0)))
+    (read-number e (assq key e) key))
 
   ;;; Cells covered by a body
 
@@ -297,8 +301,7 @@
           (chain-motion scene e dt)
           (let ((grav (and gp (cdr gp)))
                 (tm (scene-tilemap scene)))
-            (define (read p key)
-              (if p (let ((v (cdr p))) (if (fixnum? v) v (check-entity-number e key v))) 0))
+            (define (read p key) (read-number e p key))
             (let* ((ay (and grav (read ayp #:ay)))
                    (accelerate? (and grav (not (and (eq? ay 0) ayp))))
                    (vy0 (and grav (read vyp #:vy)))
@@ -616,8 +619,7 @@ EOF
                         (xp #:x) (yp #:y) (wp #:width) (hp #:height) (vyp #:vy))
       (if (and gp (cdr gp)
                (not (and skipp (cdr skipp) (memq 'on-solid (cdr skipp)))))
-          (let* ((read (lambda (p key)
-                         (if p (let ((v (cdr p))) (if (fixnum? v) v (check-entity-number entity key v))) 0)))
+          (let* ((read (lambda (p key) (read-number entity p key)))
                  (tm (scene-tilemap scene))
                  (ground? (or (and tm (tile-ground? tm (read xp #:x) (read yp #:y)
                                                     (read wp #:width) (read hp #:height)))
