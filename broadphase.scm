@@ -42,6 +42,13 @@
           (integer-floor (+ (numerator v) (* w d)) (* d size)))
         (cell-of (+ v w) size)))
 
+  ;; Cell indices are fixnums unless a box is astronomically far out; the
+  ;; step past the largest fixnum goes on in bignums.
+  (define-inline (cell> a b)
+    (if (and (fixnum? a) (fixnum? b)) (fx> a b) (> a b)))
+  (define-inline (cell+1 a)
+    (if (and (fixnum? a) (fx< a most-positive-fixnum)) (fx+ a 1) (+ a 1)))
+
   ;; floor(a / b) for integers, b > 0.
   (define (integer-floor a b)
     (let ((q (quotient a b)))
@@ -68,8 +75,8 @@
                 'large
                 (vector cx0 cy0 cx1 cy1)))))
       (define (for-each-cell span proc)
-        (do ((cy (vector-ref span 1) (+ cy 1))) ((> cy (vector-ref span 3)))
-          (do ((cx (vector-ref span 0) (+ cx 1))) ((> cx (vector-ref span 2)))
+        (do ((cy (vector-ref span 1) (cell+1 cy))) ((cell> cy (vector-ref span 3)))
+          (do ((cx (vector-ref span 0) (cell+1 cx))) ((cell> cx (vector-ref span 2)))
             (proc (bucket cx cy)))))
       (define large '())                      ; indices, ascending
       (define (register! k span)
@@ -109,12 +116,12 @@
                              queue)))))
         (let ((span (vector-ref spans p)))
           (let rows ((cy (vector-ref span 1)) (queue (add-all large queue)))
-            (if (> cy (vector-ref span 3))
+            (if (cell> cy (vector-ref span 3))
                 queue
                 (let cols ((cx (vector-ref span 0)) (queue queue))
-                  (if (> cx (vector-ref span 2))
-                      (rows (+ cy 1) queue)
-                      (cols (+ cx 1) (add-all (vector-ref buckets (bucket cx cy)) queue))))))))
+                  (if (cell> cx (vector-ref span 2))
+                      (rows (cell+1 cy) queue)
+                      (cols (cell+1 cx) (add-all (vector-ref buckets (bucket cx cy)) queue))))))))
       (do ((k 0 (fx+ k 1))) ((fx= k n)) (register! k (span-of k)))
       (do ((p 0 (fx+ p 1))) ((fx= p n))
         (if (eq? (vector-ref spans p) 'large)

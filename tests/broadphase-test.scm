@@ -55,3 +55,21 @@
   (test "later pairs see earlier pushes" '(-1 17/2 37/2)
         (map (lambda (e) (entity-ref e #:x))
              (resolve-entity-collisions (list (box 0) (box 8) (box 18)) 'spatial-hash))))
+
+(test-group "the spatial hash at the edge of the fixnum range"
+  ;; boxes whose cell index is the largest fixnum: the cell walk must step
+  ;; past it into bignums and stop, not wrap around
+  (import (chicken fixnum))
+  (define far (* most-positive-fixnum 16))
+  (define (box k x) (list (cons #:id k) (cons #:solid? #t) (cons #:x x) (cons #:y 0)
+                          (cons #:width 8) (cons #:height 8)))
+  (let ((crowd (cons (box 0 far)
+                     (cons (box 1 (+ far 4))
+                           (let loop ((k 2)) (if (= k 40) '() (cons (box k (* k 100)) (loop (+ k 1)))))))))
+    (test "the same as all pairs" #t
+          (equal? (resolve-entity-collisions crowd 'all-pairs)
+                  (resolve-entity-collisions crowd 'spatial-hash)))
+    (test "the two far boxes are pushed apart" (list (- far 2) (+ far 6))
+          (map (lambda (e) (entity-ref e #:x))
+               (let ((out (resolve-entity-collisions crowd 'spatial-hash)))
+                 (list (car out) (cadr out)))))))
