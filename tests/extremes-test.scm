@@ -124,6 +124,28 @@
       (list +nan.0 +inf.0 -inf.0 "12")))
    '(#:x #:y #:width #:height #:vx #:vy #:ay)))
 
+(test-group "the pair pass refuses non-finite numbers too, naming the key"
+  ;; resolve-entity-collisions reads boxes on its own path (all four
+  ;; numbers checked at once); each method must still name what is wrong.
+  (for-each
+   (lambda (method)
+     (for-each
+      (lambda (key)
+        (let ((crowd (cons (entity-set (ex-ent #:type 'crate #:x 40 #:y 40 #:width 16 #:height 16
+                                               #:solid? #t)
+                                       key +nan.0)
+                           (let more ((k 0))
+                             (if (= k 40) '()
+                                 (cons (ex-ent #:type 'box #:x (* 3 k) #:y 45 #:width 16 #:height 16
+                                               #:solid? #t)
+                                       (more (+ k 1))))))))
+          (test-error (sprintf "~s ~s = +nan.0" method key)
+                      (lambda (exn) (and (substring-index (sprintf "~s" key) (error-text exn))
+                                         (substring-index "crate" (error-text exn))))
+                      (resolve-entity-collisions crowd method))))
+      '(#:x #:y #:width #:height)))
+   '(all-pairs spatial-hash)))
+
 (test-group "a body resting on a floor for 100,000 frames"
   (for-each
    (lambda (y)
