@@ -17,7 +17,7 @@
 (module (downstroke broadphase)
   (visit-pairs-in-order)
 
-  (import scheme (chicken base) (chicken fixnum))
+  (import scheme (chicken base) (chicken fixnum) (chicken foreign))
 
   ;; A box spanning more cells than this on an axis is "large".
   (define large-span 16)
@@ -54,6 +54,80 @@
     (let ((q (quotient a b)))
       (if (and (negative? a) (not (zero? (remainder a b)))) (- q 1) q)))
 
+  ;; The common case of span-of in C: coordinates that are fixnums or
+  ;; rationals of fixnums, integer sizes and cell size. Fills `span` with
+  ;; the cells #(cx0 cy0 cx1 cy1) and returns 1, or 2 for a large box;
+  ;; 0 means "not this case" (flonums, bignums, a rational cell size) and
+  ;; the Scheme code decides. Computing the cells in Scheme made a closure
+  ;; for every value a branch could have handed to a procedure call.
+  (foreign-declare #<<EOF
+/* floor(v), or 0 with *ok cleared when v is not a fixnum or a rational
+   of fixnums */
+static C_word ds_floor(C_word v, int *ok) {
+  if (v & C_FIXNUM_BIT) return C_unfix(v);
+  if (!C_immediatep(v) && C_block_header(v) == C_RATNUM_TAG) {
+    C_word n = C_block_item(v, 0), d = C_block_item(v, 1);
+    if ((n & C_FIXNUM_BIT) && (d & C_FIXNUM_BIT)) {
+      C_word a = C_unfix(n), b = C_unfix(d);     /* b > 1 */
+      return a >= 0 ? a / b : (a + 1) / b - 1;
+    }
+  }
+  *ok = 0;
+  return 0;
+}
+/* floor((floor(v) + w) / size): floor(v + w) is floor(v) + w for an
+   integer w, and floor(floor(u) / size) is floor(u / size) */
+static C_word ds_cell(C_word v, C_word w, C_word size, int *ok) {
+  C_word f = ds_floor(v, ok) + w;
+  C_word c = f >= 0 ? f / size : (f + 1) / size - 1;
+  if (!C_fitsinfixnump(c)) *ok = 0;
+  return c;
+}
+static C_word ds_span(C_word span, C_word x, C_word y, C_word w, C_word h,
+                      C_word size, C_word large) {
+  int ok = (w & C_FIXNUM_BIT) && (h & C_FIXNUM_BIT) && (size & C_FIXNUM_BIT)
+           && C_unfix(size) > 0;
+  C_word cx0, cy0, cx1, cy1;
+  if (!ok) return C_fix(0);
+  cx0 = ds_cell(x, 0, C_unfix(size), &ok);
+  cy0 = ds_cell(y, 0, C_unfix(size), &ok);
+  cx1 = ds_cell(x, C_unfix(w), C_unfix(size), &ok);
+  cy1 = ds_cell(y, C_unfix(h), C_unfix(size), &ok);
+  if (!ok) return C_fix(0);
+  if (cx1 - cx0 > C_unfix(large) || cy1 - cy0 > C_unfix(large)) return C_fix(2);
+  C_set_block_item(span, 0, C_fix(cx0));
+  C_set_block_item(span, 1, C_fix(cy0));
+  C_set_block_item(span, 2, C_fix(cx1));
+  C_set_block_item(span, 3, C_fix(cy1));
+  return C_fix(1);
+}
+EOF
+)
+  (define fast-span!
+    (foreign-lambda scheme-object "ds_span" scheme-object scheme-object scheme-object
+                    scheme-object scheme-object scheme-object scheme-object))
+
+  (define same-span?
+    (foreign-lambda* bool ((scheme-object a) (scheme-object b)) #<<EOF
+/* both 'large (the same symbol), or both four equal fixnum cells; bignum
+   cells (astronomically far out) compare unequal, which only costs a
+   needless re-filing */
+if (a == b) C_return(1);
+if (C_immediatep(a) || C_immediatep(b) || C_header_bits(a) != C_VECTOR_TYPE
+    || C_header_bits(b) != C_VECTOR_TYPE) C_return(0);
+C_return(C_block_item(a, 0) == C_block_item(b, 0) && C_block_item(a, 1) == C_block_item(b, 1)
+         && C_block_item(a, 2) == C_block_item(b, 2) && C_block_item(a, 3) == C_block_item(b, 3));
+EOF
+))
+
+  ;; span-of for any numbers: generic arithmetic.
+  (define (slow-span x y w h size)
+    (let ((cx0 (cell-of x size)) (cy0 (cell-of y size))
+          (cx1 (end-cell x w size)) (cy1 (end-cell y h size)))
+      (if (or (> (- cx1 cx0) large-span) (> (- cy1 cy0) large-span))
+          'large
+          (vector cx0 cy0 cx1 cy1))))
+
   ;; n boxes numbered 0..n-1; (box k) returns the current (values x y w h);
   ;; (visit! p q) may move boxes p and q, and returns true when it did
   ;; (only then are their cells looked at again).
@@ -69,11 +143,11 @@
             (modulo (+ (* cx 73856093) (* cy 19349663)) (+ mask 1))))
       (define (span-of k)
         (let-values (((x y w h) (box k)))
-          (let ((cx0 (cell-of x size)) (cy0 (cell-of y size))
-                (cx1 (end-cell x w size)) (cy1 (end-cell y h size)))
-            (if (or (> (- cx1 cx0) large-span) (> (- cy1 cy0) large-span))
-                'large
-                (vector cx0 cy0 cx1 cy1)))))
+          (let* ((span (make-vector 4 0))
+                 (fast (fast-span! span x y w h size large-span)))
+            (cond ((eq? fast 1) span)
+                  ((eq? fast 2) 'large)
+                  (else (slow-span x y w h size))))))
       (define (for-each-cell span proc)
         (do ((cy (vector-ref span 1) (cell+1 cy))) ((cell> cy (vector-ref span 3)))
           (do ((cx (vector-ref span 0) (cell+1 cx))) ((cell> cx (vector-ref span 2)))
@@ -90,19 +164,12 @@
               (set! large (remove-one k large))
               (for-each-cell span (lambda (b) (vector-set! buckets b (remove-one k (vector-ref buckets b))))))))
       ;; Re-file box k if its cells changed; #t when they did. Most visits
-      ;; move a box within its cells: that case allocates nothing.
+      ;; move a box within its cells.
       (define (refresh! k)
-        (let ((old (vector-ref spans k)))
-          (let-values (((x y w h) (box k)))
-            (if (and (vector? old)
-                     (eqv? (vector-ref old 0) (cell-of x size))
-                     (eqv? (vector-ref old 1) (cell-of y size))
-                     (eqv? (vector-ref old 2) (end-cell x w size))
-                     (eqv? (vector-ref old 3) (end-cell y h size)))
-                #f
-                (let ((new (span-of k)))
-                  (and (not (equal? old new))
-                       (begin (unregister! k) (register! k new) #t)))))))
+        (let ((old (vector-ref spans k))
+              (new (span-of k)))
+          (and (not (same-span? old new))
+               (begin (unregister! k) (register! k new) #t))))
       ;; Add to the ascending `queue` every box after `after` sharing a cell
       ;; with p, or large, not yet queued in row p.
       (define (gather p after queue)
