@@ -120,6 +120,54 @@ C_return(C_block_item(a, 0) == C_block_item(b, 0) && C_block_item(a, 1) == C_blo
 EOF
 ))
 
+  ;; The bucket of a cell of fixnum indices, for filing and for gathering.
+  ;; gather-cells! is gather's common case: p's span four fixnum cells. It
+  ;; walks p's cells and the large boxes, stamps each box after `after` not
+  ;; yet stamped for row p, puts them in `buf` in ascending order and
+  ;; returns how many; -1 means "not this case". The buckets are lists of
+  ;; fixnums, which C reads as they are; it writes only fixnums.
+  (foreign-declare #<<EOF
+static C_word ds_bucket(C_word cx, C_word cy, C_word mask) {
+  return C_fixnum_and(C_fixnum_xor(C_fixnum_times(cx, C_fix(73856093)),
+                                   C_fixnum_times(cy, C_fix(19349663))), mask);
+}
+static C_word ds_take(C_word ls, C_word buf, C_word n, C_word p, C_word after,
+                      C_word stamp) {
+  for (; ls != C_SCHEME_END_OF_LIST; ls = C_block_item(ls, 1)) {
+    C_word q = C_block_item(ls, 0);
+    if (q > after && C_block_item(stamp, C_unfix(q)) != p) {
+      C_set_block_item(stamp, C_unfix(q), p);
+      C_set_block_item(buf, n++, q);
+    }
+  }
+  return n;
+}
+static C_word ds_gather(C_word buf, C_word p, C_word after, C_word span,
+                        C_word buckets, C_word large, C_word stamp, C_word mask) {
+  C_word n = 0, cx, cy, i, j, q;
+  if (C_immediatep(span) || C_header_bits(span) != C_VECTOR_TYPE) return C_fix(-1);
+  for (i = 0; i < 4; i++)
+    if (!(C_block_item(span, i) & C_FIXNUM_BIT)) return C_fix(-1);
+  n = ds_take(large, buf, n, p, after, stamp);
+  for (cy = C_unfix(C_block_item(span, 1)); cy <= C_unfix(C_block_item(span, 3)); cy++)
+    for (cx = C_unfix(C_block_item(span, 0)); cx <= C_unfix(C_block_item(span, 2)); cx++)
+      n = ds_take(C_block_item(buckets, C_unfix(ds_bucket(C_fix(cx), C_fix(cy), mask))),
+                  buf, n, p, after, stamp);
+  for (i = 1; i < n; i++) {          /* a few boxes: insertion sort */
+    q = C_block_item(buf, i);
+    for (j = i; j > 0 && C_block_item(buf, j - 1) > q; j--)
+      C_set_block_item(buf, j, C_block_item(buf, j - 1));
+    C_set_block_item(buf, j, q);
+  }
+  return C_fix(n);
+}
+EOF
+)
+  (define fixnum-bucket (foreign-lambda scheme-object "ds_bucket" scheme-object scheme-object scheme-object))
+  (define gather-cells!
+    (foreign-lambda scheme-object "ds_gather" scheme-object scheme-object scheme-object
+                    scheme-object scheme-object scheme-object scheme-object scheme-object))
+
   ;; span-of for any numbers: generic arithmetic.
   (define (slow-span x y w h size)
     (let ((cx0 (cell-of x size)) (cy0 (cell-of y size))
@@ -139,7 +187,7 @@ EOF
            (stamp (make-vector n -1)))
       (define (bucket cx cy)
         (if (and (fixnum? cx) (fixnum? cy))
-            (fxand (fxxor (fx* cx 73856093) (fx* cy 19349663)) mask)
+            (fixnum-bucket cx cy mask)
             (modulo (+ (* cx 73856093) (* cy 19349663)) (+ mask 1))))
       (define (span-of k)
         (let-values (((x y w h) (box k)))
@@ -172,7 +220,17 @@ EOF
                (begin (unregister! k) (register! k new) #t))))
       ;; Add to the ascending `queue` every box after `after` sharing a cell
       ;; with p, or large, not yet queued in row p.
+      (define buf (make-vector n 0))
       (define (gather p after queue)
+        (let ((count (gather-cells! buf p after (vector-ref spans p) buckets large stamp mask)))
+          (cond ((fx< count 0) (slow-gather p after queue))
+                ((null? queue)
+                 (let build ((i (fx- count 1)) (out '()))
+                   (if (fx< i 0) out (build (fx- i 1) (cons (vector-ref buf i) out)))))
+                (else
+                 (let merge ((i 0) (queue queue))
+                   (if (fx= i count) queue (merge (fx+ i 1) (insert (vector-ref buf i) queue))))))))
+      (define (slow-gather p after queue)
         (define (add-all ls queue)
           (if (null? ls)
               queue
