@@ -336,6 +336,10 @@ EOF
   (define (step-motion scene e dt)
     ((motion-pass scene dt) e))
 
+  ;; What the steps write for a key, given its pair p (or #f) and its final
+  ;; value v: v, or 'keep when the key holds that value already.
+  (define-inline (final p v) (if (and p (eqv? (cdr p) v)) 'keep v))
+
   ;; step-motion for any numbers: generic arithmetic, every number checked.
   ;; An entity that switches steps off with #:skip-pipelines takes the six
   ;; steps one by one.
@@ -367,9 +371,6 @@ EOF
                                 (tile-stop vy y1 (read hp #:height) x2 (read wp #:width)
                                            swept (tilemap-tile-height tm) (tilemap-tile-width tm)
                                            (row-grid tm)))))
-              ;; What the six steps write, each key with its final value, or
-              ;; 'keep for a key they do not write or that keeps its value.
-              (define (final p v) (if (and p (eqv? (cdr p) v)) 'keep v))
               (rewrite-motion e grav
                               xp (final xp x2)
                               yp (final yp (or y-stop y1))
@@ -377,6 +378,30 @@ EOF
                               vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy2)) (else 'keep))
                               ayp (if accelerate? (final ayp 0) 'keep)
                               #f 'keep))))))
+
+  ;; general-motion in a scene without a map, for an entity without skips:
+  ;; acceleration, gravity and velocity only, given the pairs the caller
+  ;; found. The numbers are checked all at once (see let-numbers), in the
+  ;; order general-motion reads them, so there is no call but the rewrite.
+  (define (free-motion e grav xp yp vxp vyp ayp)
+    (let ((x (if xp (cdr xp) 0)) (y (if yp (cdr yp) 0))
+          (vx (if vxp (cdr vxp) 0)) (vy (if vyp (cdr vyp) 0))
+          (ay (if ayp (cdr ayp) 0)))
+      (if (eq? 1 (fxand* (if grav (plain-number-bit ay) 1) (plain-number-bit vy)
+                         (plain-number-bit x) (plain-number-bit vx) (plain-number-bit y)))
+          (let* ((accelerate? (and grav (not (and (eq? ay 0) ayp))))
+                 (vy1 (if accelerate? (+ vy ay) vy))
+                 (vy2 (if grav (+ vy1 *gravity*) vy)))
+            (rewrite-motion e grav
+                            xp (final xp (+ x vx))
+                            yp (final yp (+ y vy2))
+                            vxp 'keep
+                            vyp (if grav (final vyp vy2) 'keep)
+                            ayp (if accelerate? (final ayp 0) 'keep)
+                            #f 'keep))
+          (if grav
+              (reject-numbers e '(#:ay #:vy #:x #:vx #:y) (list ay vy x vx y))
+              (reject-numbers e '(#:x #:vx #:vy #:y) (list x vx vy y))))))
 
   ;; What rewrite-motion's callers pass for a key they leave as it is: the
   ;; symbol keep, which no value they write (a number or a boolean) can be.
@@ -586,6 +611,13 @@ EOF
       (define (general e)
         (let ((moved (general-motion scene e dt)))
           (if ground? (detect-on-solid scene moved dt) moved)))
+      ;; An entity the C code leaves (see above); without a map and skips,
+      ;; free-motion does what general-motion would.
+      (define (fallback e grav skipp xp yp vxp vyp ayp)
+        (cond (tm (general e))
+              ((if skipp (if (cdr skipp) (not (null? (cdr skipp))) #f) #f) (general e))
+              (ground? (detect-on-solid scene (free-motion e grav xp yp vxp vyp ayp) dt))
+              (else (free-motion e grav xp yp vxp vyp ayp))))
       (if (and tm (not map?))
           general
           (lambda (e)
@@ -613,7 +645,7 @@ EOF
                        (writes (fixnum-motion! out bytes map flags gravity (and skipp (cdr skipp))
                                                x y w h vx vy ay (and onp (cdr onp)))))
                   (cond ((fx= writes 0) e)
-                        ((fx< writes 0) (general e))
+                        ((fx< writes 0) (fallback e grav skipp xp yp vxp vyp ayp))
                         (else
                          (rewrite-motion e grav
                                          xp (if (fx= 0 (fxand writes 1)) 'keep (vector-ref out 0))
