@@ -142,6 +142,32 @@ static C_word ds_take(C_word ls, C_word buf, C_word n, C_word p, C_word after,
   }
   return n;
 }
+/* Takes box k out of the buckets of its span of fixnum cells (which the
+   Scheme side filed it in, one pair per cell): the lists are the spatial
+   hash's own, so they are unlinked in place. */
+static C_word ds_unfile(C_word k, C_word span, C_word buckets, C_word mask) {
+  C_word cx, cy, b, ls, prev;
+  for (cy = C_unfix(C_block_item(span, 1)); cy <= C_unfix(C_block_item(span, 3)); cy++)
+    for (cx = C_unfix(C_block_item(span, 0)); cx <= C_unfix(C_block_item(span, 2)); cx++) {
+      b = C_unfix(ds_bucket(C_fix(cx), C_fix(cy), mask));
+      prev = C_SCHEME_FALSE;
+      for (ls = C_block_item(buckets, b); ls != C_SCHEME_END_OF_LIST; ls = C_block_item(ls, 1)) {
+        if (C_block_item(ls, 0) == k) {
+          if (prev == C_SCHEME_FALSE) C_mutate(&C_block_item(buckets, b), C_block_item(ls, 1));
+          else C_mutate(&C_block_item(prev, 1), C_block_item(ls, 1));
+          break;
+        }
+        prev = ls;
+      }
+    }
+  return C_SCHEME_UNDEFINED;
+}
+/* 1 when span is four fixnum cells */
+static C_word ds_fixnum_span(C_word span) {
+  return C_fix(!C_immediatep(span) && C_header_bits(span) == C_VECTOR_TYPE
+               && (C_block_item(span, 0) & C_block_item(span, 1) & C_block_item(span, 2)
+                   & C_block_item(span, 3) & C_FIXNUM_BIT));
+}
 static C_word ds_gather(C_word buf, C_word p, C_word after, C_word span,
                         C_word buckets, C_word large, C_word stamp, C_word mask) {
   C_word n = 0, cx, cy, i, j, q;
@@ -163,6 +189,9 @@ static C_word ds_gather(C_word buf, C_word p, C_word after, C_word span,
 }
 EOF
 )
+  (define unfile!
+    (foreign-lambda scheme-object "ds_unfile" scheme-object scheme-object scheme-object scheme-object))
+  (define fixnum-span-bit (foreign-lambda scheme-object "ds_fixnum_span" scheme-object))
   (define fixnum-bucket (foreign-lambda scheme-object "ds_bucket" scheme-object scheme-object scheme-object))
   (define gather-cells!
     (foreign-lambda scheme-object "ds_gather" scheme-object scheme-object scheme-object
@@ -203,14 +232,27 @@ EOF
       (define large '())                      ; indices, ascending
       (define (register! k span)
         (vector-set! spans k span)
-        (if (eq? span 'large)
-            (set! large (insert k large))
-            (for-each-cell span (lambda (b) (vector-set! buckets b (cons k (vector-ref buckets b)))))))
+        (cond ((eq? span 'large) (set! large (insert k large)))
+              ((eq? (fixnum-span-bit span) 1)
+               ;; loops of fixnums, no closure per cell; they stop at the
+               ;; last cell, never stepping past the largest fixnum
+               (let ((cx0 (vector-ref span 0)) (cy0 (vector-ref span 1))
+                     (cx1 (vector-ref span 2)) (cy1 (vector-ref span 3)))
+                 (unless (or (fx> cx0 cx1) (fx> cy0 cy1))
+                   (let rows ((cy cy0))
+                     (let cols ((cx cx0))
+                       (let ((b (fixnum-bucket cx cy mask)))
+                         (vector-set! buckets b (cons k (vector-ref buckets b))))
+                       (unless (fx= cx cx1) (cols (fx+ cx 1))))
+                     (unless (fx= cy cy1) (rows (fx+ cy 1)))))))
+              (else
+               (for-each-cell span (lambda (b) (vector-set! buckets b (cons k (vector-ref buckets b))))))))
       (define (unregister! k)
         (let ((span (vector-ref spans k)))
-          (if (eq? span 'large)
-              (set! large (remove-one k large))
-              (for-each-cell span (lambda (b) (vector-set! buckets b (remove-one k (vector-ref buckets b))))))))
+          (cond ((eq? span 'large) (set! large (remove-one k large)))
+                ((eq? (fixnum-span-bit span) 1) (unfile! k span buckets mask))
+                (else
+                 (for-each-cell span (lambda (b) (vector-set! buckets b (remove-one k (vector-ref buckets b)))))))))
       ;; Re-file box k if its cells changed; #t when they did. Most visits
       ;; move a box within its cells.
       (define (refresh! k)
