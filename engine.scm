@@ -20,7 +20,7 @@
    game-add-state! game-state-set! game-current-state game-states)
 
   (import scheme (chicken base) (chicken format) (chicken process-context) (chicken fixnum)
-          (chicken condition) (chicken file) (chicken pathname)
+          (chicken foreign) (chicken condition) (chicken file) (chicken pathname)
           (downstroke entity) (downstroke scene) (downstroke physics)
           (downstroke tween) (downstroke animation) (downstroke srfi-197)
           (downstroke assets)
@@ -108,7 +108,51 @@
   (define need-animation 16)    ; an entity has #:animations
   (define need-support 32)      ; an entity has #:solid? (it may hold others up)
 
+  ;; The walk below, in C: it reads every pair of every entity each frame,
+  ;; which in Scheme was a twentieth of a crowd scene's time. Bit i is set
+  ;; when some entity holds need-keys[i] with a true value, except for
+  ;; #:solid? (bit 2), whose entities are counted in bits 8-9 (0, 1, 2 or
+  ;; more). -1 when an entity is not a list of pairs: the Scheme walk then
+  ;; raises the error.
+  (foreign-declare #<<EOF
+static C_word ds_pipeline_needs(C_word entities, C_word keys) {
+  C_word es, ps, p, k, bits = 0, solids = 0, i;
+  int solid;
+  for (es = entities; es != C_SCHEME_END_OF_LIST; es = C_block_item(es, 1)) {
+    if (!C_truep(C_i_pairp(es))) return C_fix(-1);
+    solid = 0;
+    for (ps = C_block_item(es, 0); ps != C_SCHEME_END_OF_LIST; ps = C_block_item(ps, 1)) {
+      if (!C_truep(C_i_pairp(ps))) return C_fix(-1);
+      p = C_block_item(ps, 0);
+      if (!C_truep(C_i_pairp(p))) return C_fix(-1);
+      if (C_block_item(p, 1) == C_SCHEME_FALSE) continue;
+      k = C_block_item(p, 0);
+      for (i = 0; i < 5; i++)
+        if (k == C_block_item(keys, i)) {
+          if (i == 2) solid = 1; else bits |= 1 << i;
+          break;
+        }
+    }
+    if (solid && solids < 2) solids++;
+  }
+  return C_fix(bits | (solids << 8));
+}
+EOF
+)
+  (define need-keys (vector #:tween #:gravity? #:solid? #:group-id #:animations))
+  (define c-needs (foreign-lambda scheme-object "ds_pipeline_needs" scheme-object scheme-object))
+
   (define (pipeline-needs entities)
+    (let ((c (c-needs entities need-keys)))
+      (if (fx< c 0)
+          (scheme-pipeline-needs entities)
+          (fxior (fxand c 27)          ; tweens, ground, groups, animation
+                 (case (fxshr c 8)
+                   ((0) 0)
+                   ((1) need-support)
+                   (else (fxior need-pairs need-support)))))))
+
+  (define (scheme-pipeline-needs entities)
     (let next ((es entities) (bits 0) (solids 0))
       (if (null? es)
           (fxior bits (cond ((fx>= solids 2) (fxior need-pairs need-support))

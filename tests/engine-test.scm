@@ -135,7 +135,14 @@
       (test-error "a NaN velocity stops the frame with an error naming it"
                   (lambda (exn) (substring-index "#:vx" (error-text exn)))
                   (game-step! g))
-      (test-assert "... and the scene is left as it was" (eq? before (game-scene g))))))
+      (test-assert "... and the scene is left as it was" (eq? before (game-scene g)))))
+  ;; The pipeline's look at what entities need is done in C; malformed
+  ;; entities are still an error, not a crash.
+  (test-error "an entity holding something other than pairs is an error"
+              (engine-pipeline (make-scene entities: (list (ent #:x 0) (list (cons #:solid? #t) 'oops)))
+                               16))
+  (test-error "... and so is an improper entity list"
+              (engine-pipeline (make-scene entities: (cons (ent #:x 0) 'oops)) 16)))
 
 (test-group "scenario: a player dropped from y=50 lands and stays for 10,000 frames"
   (let* ((g (game-with (make-scene tilemap: (room)
