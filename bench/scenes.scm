@@ -5,7 +5,7 @@
 ;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 steps ...]
 
 (import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
-        (chicken string) (chicken sort) (chicken gc)
+        (chicken string) (chicken sort) (chicken gc) (chicken io) (chicken condition)
         (downstroke entity) (downstroke scene) (downstroke tilemap)
         (downstroke physics) (downstroke engine) (downstroke tween) (downstroke animation))
 
@@ -127,7 +127,25 @@
                             (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f)
                                     start))))))))))
     (let ((ms (/ (median times) 600.0)))
-      (report! "S1" mode n #f 600 ms (/ (* 1000 ms) n) #f #f))))
+      (report! "S1" mode n #f 600 ms (/ (* 1000 ms) n) #f #f)
+      (printf "  peak resident set of the process so far: ~a MB~%" (peak-megabytes)))))
+
+;; VmHWM of /proc/self/status (Linux), in MB; "?" where there is none.
+;; S1 runs its sizes in increasing order, so after the largest this is
+;; that size's peak.
+(define (peak-megabytes)
+  (handle-exceptions exn "?"
+    (let ((line (with-input-from-file "/proc/self/status"
+                  (lambda ()
+                    (let loop ()
+                      (let ((l (read-line)))
+                        (cond ((eof-object? l) #f)
+                              ((substring=? l "VmHWM:") l)
+                              (else (loop)))))))))
+      (if line
+          (let ((kb (string->number (car (string-split (substring line 6))))))
+            (if kb (quotient (+ kb 512) 1024) "?"))
+          "?"))))
 
 (define (filter-on-ground es)
   (let loop ((es es) (out '()))
@@ -256,11 +274,13 @@
 (define runs (string->number (flag-value "--runs" "3")))
 (define csv-file (flag-value "--csv" "bench/results.csv"))
 (define quick? (member "--quick" args))
-;; --mode M keeps only that collision mode of S1.
+;; --mode M keeps only that mode: discrete or swept (S1, S3), all-pairs or
+;; spatial-hash (S2).
 (define only-mode (let ((m (flag-value "--mode" #f))) (and m (string->symbol m))))
 ;; --n N keeps only that size of S1 and S2 (and the step table's size).
 (define only-n (let ((n (flag-value "--n" #f))) (and n (string->number n))))
 (define (sizes ns) (if only-n (if (memv only-n ns) (list only-n) '()) ns))
+(define (modes ms) (if only-mode (if (memq only-mode ms) (list only-mode) '()) ms))
 (define (wanted? s)
   (let ((named (filter-scenes args)))
     (or (null? named) (member s named))))
@@ -274,18 +294,20 @@
   (for-each (lambda (mode)
               (for-each (lambda (n) (run-s1 n mode runs))
                         (sizes (if quick? '(100 1000) '(100 1000 10000)))))
-            (if only-mode (list only-mode) '(discrete swept))))
+            (modes '(discrete swept))))
 (when (wanted? "steps")
   (run-s1-steps (or only-n (if quick? 1000 10000)) runs))
 (when (wanted? "S2")
   ;; all pairs is quadratic: 5000 would take minutes a frame
-  (for-each (lambda (n) (run-s2 n 'all-pairs runs)) (sizes (if quick? '(100) '(100 1000))))
-  (for-each (lambda (n) (run-s2 n 'spatial-hash runs)) (sizes (if quick? '(100) '(100 1000 5000)))))
+  (when (memq 'all-pairs (modes '(all-pairs)))
+    (for-each (lambda (n) (run-s2 n 'all-pairs runs)) (sizes (if quick? '(100) '(100 1000)))))
+  (when (memq 'spatial-hash (modes '(spatial-hash)))
+    (for-each (lambda (n) (run-s2 n 'spatial-hash runs)) (sizes (if quick? '(100) '(100 1000 5000))))))
 (when (wanted? "S3")
   (for-each (lambda (mode)
               (for-each (lambda (v) (run-s3 v mode runs))
                         '(1 8 16 27 28 29 40 64 200 1000 1000000)))
-            '(discrete swept)))
+            (modes '(discrete swept))))
 
 (with-output-to-file csv-file
   (lambda ()
