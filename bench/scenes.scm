@@ -107,28 +107,48 @@
                       e)))
           (loop (cdr es) (+ k 1) (cons e out))))))
 
-(define (run-s1 n mode runs)
-  (let ((times
-         (let repeat ((r 0) (times '()))
-           (if (= r runs)
-               times
-               (let-values (((scene speeds) (s1-scene n mode)))
-                 (let frames ((f 0) (scene scene) (start #f))
-                   (cond ((= f 660)
-                          (when (= r 0)
-                            (let ((es (scene-entities scene)))
-                              (printf "checksum S1 ~a n=~a sum-x=~a sum-y=~a on-ground=~a~%"
-                                      mode n (sum #:x es) (sum #:y es)
-                                      (length (filter-on-ground es)))))
-                          (report-gc! (current-gc-milliseconds) (- (now) start))
-                          (repeat (+ r 1) (cons (- (now) start) times)))
-                         (else
-                          (let ((start (if (= f 60) (start-timing!) start)))
-                            (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f)
-                                    start))))))))))
-    (let ((ms (/ (median times) 600.0)))
-      (report! "S1" mode n #f 600 ms (/ (* 1000 ms) n) #f #f)
-      (printf "  peak resident set of the process so far: ~a MB~%" (peak-megabytes)))))
+(define (run-s1 n modes runs)
+  ;; One timed run of each mode in turn, `runs` times over, so that a slow
+  ;; spell of a noisy machine falls on every mode alike and the ratios
+  ;; between modes stay meaningful.
+  (let ((times (let repeat ((r 0) (times (map list modes)))
+                 (if (= r runs)
+                     times
+                     (repeat (+ r 1)
+                             (map (lambda (mode-times)
+                                    (cons (car mode-times)
+                                          (cons (s1-run n (car mode-times) (= r 0))
+                                                (cdr mode-times))))
+                                  times))))))
+    (for-each (lambda (mode-times)
+                (let ((ms (/ (median (cdr mode-times)) 600.0)))
+                  (report! "S1" (car mode-times) n #f 600 ms (/ (* 1000 ms) n) #f #f)))
+              times)
+    (printf "  peak resident set of the process so far: ~a MB~%" (peak-megabytes))))
+
+;; One run of 660 frames, the last 600 timed (ms); the first run of each
+;; mode prints the checksum line.
+(define (s1-run n mode checksum?)
+  (let-values (((scene speeds) (s1-scene n mode)))
+    (let frames ((f 0) (scene scene) (start #f))
+      (cond ((= f 660)
+             (when checksum?
+               (let ((es (scene-entities scene)))
+                 (printf "checksum S1 ~a n=~a sum-x=~a sum-y=~a on-ground=~a~%"
+                         mode n (sum #:x es) (sum #:y es)
+                         (length (filter-on-ground es)))))
+             (let ((ms (- (now) start)))
+               (report-gc! (current-gc-milliseconds) ms)
+               ms))
+            (else
+             (let ((start (if (= f 60) (start-timing!) start)))
+               (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f) start)))))))
+
+(define (filter-on-ground es)
+  (let loop ((es es) (out '()))
+    (cond ((null? es) out)
+          ((entity-ref (car es) #:on-ground?) (loop (cdr es) (cons (car es) out)))
+          (else (loop (cdr es) out)))))
 
 ;; VmHWM of /proc/self/status (Linux), in MB; "?" where there is none.
 ;; S1 runs its sizes in increasing order, so after the largest this is
@@ -146,12 +166,6 @@
           (let ((kb (string->number (car (string-split (substring line 6))))))
             (if kb (quotient (+ kb 512) 1024) "?"))
           "?"))))
-
-(define (filter-on-ground es)
-  (let loop ((es es) (out '()))
-    (cond ((null? es) out)
-          ((entity-ref (car es) #:on-ground?) (loop (cdr es) (cons (car es) out)))
-          (else (loop (cdr es) out)))))
 
 ;;; What each step of the pipeline costs on the S1 crowd, one pass at a time
 ;;; (the scene after the warm-up). Steps no entity of S1 needs (tweens,
@@ -291,10 +305,10 @@
           (else (loop (cdr as) out)))))
 
 (when (wanted? "S1")
-  (for-each (lambda (mode)
-              (for-each (lambda (n) (run-s1 n mode runs))
-                        (sizes (if quick? '(100 1000) '(100 1000 10000)))))
-            (modes '(discrete swept))))
+  (let ((ms (modes '(discrete swept))))
+    (unless (null? ms)
+      (for-each (lambda (n) (run-s1 n ms runs))
+                (sizes (if quick? '(100 1000) '(100 1000 10000)))))))
 (when (wanted? "steps")
   (run-s1-steps (or only-n (if quick? 1000 10000)) runs))
 (when (wanted? "S2")
