@@ -18,14 +18,32 @@
   (import scheme (chicken base) (chicken keyword) (chicken format) (chicken fixnum))
 
   (define (entity-ref e key #!optional (default #f))
-    (let ((p (assq key e)))
-      (if p (cdr p) default)))
+    (if (plist-shaped? e)
+        (not-an-alist 'entity-ref e key)
+        (let ((p (assq key e)))
+          (if p (cdr p) default))))
+
+  ;; Entities written as plists, the way the contract shows them, must be
+  ;; converted before they are read or written (make-scene, update-scene and
+  ;; scene-add-entity do it). Only the first element is looked at, so this
+  ;; costs one test per call; without it the user would see assq's bare
+  ;; "bad argument type".
+  (define (plist-shaped? e) (and (pair? e) (not (pair? (car e)))))
+
+  (define (not-an-alist who e key)
+    (let ((type (and (keyword? (car e)) (get-keyword #:type e (lambda () #f)))))
+      (error who
+             (sprintf "~akey ~s: ~s is ~a, not an entity (a keyword alist); convert it with plist->entity"
+                      (if type (sprintf "entity ~a, " type) "")
+                      key e
+                      (if (keyword? (car e)) "a plist" "a list of non-pairs")))))
 
   ;; Copy the pairs before `key`, replace its pair, share the tail.
   ;; A key not present yet is added at the front (and nothing is copied);
   ;; a key that holds this very value already gives e itself, so a game
   ;; that sets a key every frame allocates only when the value changes.
   (define (entity-set e key value)
+    (when (plist-shaped? e) (not-an-alist 'entity-set e key))
     (let find ((rest e) (n 0))
       (cond ((null? rest) (cons (cons key value) e))
             ((eq? (caar rest) key)
@@ -57,6 +75,7 @@
   ;; ..., with one walk and one copy: present keys are replaced where they
   ;; are, absent ones go in front, the last one set first.
   (define (entity-set* e . kvs)
+    (when (plist-shaped? e) (not-an-alist 'entity-set* e (if (pair? kvs) (car kvs) #f)))
     (let find ((rest e) (n 0) (last -1) (found 0))
       (if (pair? rest)
           (if (last-setting (caar rest) kvs)
@@ -102,9 +121,11 @@
                     bodies))))
 
   (define (entity-update e key proc #!optional (default #f))
+    (when (plist-shaped? e) (not-an-alist 'entity-update e key))
     (entity-set e key (proc (entity-ref e key default))))
 
   (define (entity-remove e key)
+    (when (plist-shaped? e) (not-an-alist 'entity-remove e key))
     (let find ((rest e) (n 0))
       (cond ((null? rest) e)
             ((eq? (caar rest) key)

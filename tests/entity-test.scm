@@ -1,6 +1,6 @@
 ;;; (downstroke entity): keyword alists, plists, tags, skips, define-pipeline.
 
-(import scheme (chicken base) (chicken string)
+(import scheme (chicken base) (chicken string) (chicken condition)
         (downstroke test) (downstroke entity))
 
 (test-group "entity access"
@@ -41,7 +41,27 @@
               (lambda (exn) (substring-index "#:y" (error-text exn)))
               (plist->entity (list #:x 1 #:y)))
   (test-error "a plist giving a key twice" (plist->entity (list #:x 1 #:x 2)))
-  (test-error "something that is no entity" (as-entity 42)))
+  (test-error "something that is no entity" (as-entity 42))
+  ;; A plist handed straight to the accessors: an error that says what it
+  ;; is and what to do, naming the entity's type and the key asked for.
+  (let ((p (list #:type 'player #:x 1 #:y 2)))
+    (for-each
+     (lambda (who call)
+       (test-error (string-append who " on a plist says to convert it")
+                   (lambda (exn) (let ((text (error-text exn)))
+                                   (and (equal? (string->symbol who)
+                                                ((condition-property-accessor 'exn 'location #f) exn))
+                                        (substring-index "entity player" text)
+                                        (substring-index "plist->entity" text)
+                                        (substring-index "#:y" text))))
+                   (call)))
+     '("entity-ref" "entity-set" "entity-set*" "entity-remove" "entity-update")
+     (list (lambda () (entity-ref p #:y))
+           (lambda () (entity-set p #:y 3))
+           (lambda () (entity-set* p #:y 3 #:x 4))
+           (lambda () (entity-remove p #:y))
+           (lambda () (entity-update p #:y (lambda (y) (+ y 1)))))))
+  (test "an empty entity is still an entity" 'none (entity-ref '() #:x 'none)))
 
 (test-group "entity-skips-pipeline? and define-pipeline"
   (define-pipeline (bump-x bump) (scene entity dt)

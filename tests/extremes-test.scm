@@ -61,6 +61,25 @@
                     (set! wrong (+ wrong 1))))
                 '(1 13 27 55/2)))
     (test "discrete below size + tile (28 px/frame) never tunnels" 0 wrong))
+  ;; At and above the safe speed, discrete tunnels exactly where
+  ;; docs/physics.org says: when its last position short of the wall
+  ;; (x + 12 <= 4800) is one frame's move or less from the far face (4816).
+  ;; Everywhere else it stops flush, as swept does.
+  (for-each
+   (lambda (v)
+     (let loop ((x 4500) (unexpected 0) (tunnelled 0))
+       (if (> x 4788)
+           (begin
+             (test (sprintf "discrete at v = ~a tunnels exactly where predicted" v) 0 unexpected)
+             (test-assert (sprintf "... which happens at v = ~a" v) (> tunnelled 0)))
+           (let* ((last (+ x (* v (floor (/ (- 4788 x) v)))))
+                  (predicted (>= (+ last v) 4816))
+                  (fx (entity-ref (ex-first (ex-run (ex-mover 'discrete x v) (+ 2 (ceiling (/ (- 4816 x) v)))))
+                                  #:x))
+                  (ok (if predicted (>= fx 4816) (= fx 4788))))
+             (loop (+ x 1/4) (if ok unexpected (+ unexpected 1))
+                   (if predicted (+ tunnelled 1) tunnelled))))))
+   '(28 29 40 64 200 1000))
   (test "the safe speed of a 12 px body against 16 px tiles" 28 (discrete-safe-speed 12 16))
   (test-assert "tunnel-risk? at the safe speed in discrete mode"
                (tunnel-risk? (ex-mover 'discrete 16 28) (ex-first (ex-mover 'discrete 16 28))))
