@@ -7,7 +7,9 @@ out=${2:-docs/images}
 mkdir -p "$out"
 if ! command -v gnuplot >/dev/null; then
   if [ "$(id -u)" -eq 0 ]; then SUDO=""; else SUDO="sudo"; fi
-  $SUDO apt-get install -y -qq gnuplot-nox
+  # Only gnuplot: its recommends pull in ImageMagick and Ghostscript.
+  install="$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends gnuplot-nox"
+  $install || { $SUDO apt-get update -qq && $install; }
 fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
