@@ -784,15 +784,18 @@ EOF
             (values (shift a axis half 1) (shift b axis (- half) -1))))))
 
   ;; A movable body against an immovable one: the mover alone moves the full
-  ;; overlap, and its velocity on that axis becomes 0. While the mover's
-  ;; centre is above the immovable's, separation is vertical (a landing),
-  ;; so a rider is never shoved sideways off a platform's edge.
+  ;; overlap, and its velocity on that axis becomes 0. A mover falling onto
+  ;; it (vy > 0) while its centre is above the immovable's is separated
+  ;; vertically (a landing), so a rider is never shoved sideways off a
+  ;; platform's edge. A mover that is not falling (a walker on the floor, a
+  ;; top-down body) meets it on the shallow axis like any other contact.
   ;; A mover pushed up off an immovable body rests on it, and is carried by
   ;; that body's #:vx: a moving platform takes its rider along.
   (define (push-off mover fixed mover-is-later?)
     (let-values (((axis depth)
-                  (if (< (+ (* 2 (num mover #:y)) (num mover #:height))
-                         (+ (* 2 (num fixed #:y)) (num fixed #:height)))
+                  (if (and (> (num mover #:vy) 0)
+                           (< (+ (* 2 (num mover #:y)) (num mover #:height))
+                              (+ (* 2 (num fixed #:y)) (num fixed #:height))))
                       (values 'y (overlap-on mover fixed 'y))
                       (shallow-axis mover fixed))))
       (let* ((up? (goes-negative? mover fixed axis mover-is-later?))

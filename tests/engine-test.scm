@@ -222,6 +222,41 @@
     (test "standing on top all along" 84 (entity-ref (find-type g 'player) #:y))
     (test "grounded every frame" 0 off)))
 
+(test-group "scenario: only a falling body lands on an immovable one"
+  ;; A crate 8 px high on the floor of a room. A walker on the floor has
+  ;; vy 0 when it reaches the crate (the tile pass zeroed it): it is not
+  ;; falling onto the crate, so it is stopped at its side rather than lifted
+  ;; on top. A top-down mover beside a block, its centre above the block's,
+  ;; is stopped the same way.
+  (let ((g (game-with (make-scene tilemap: (room)
+                                  entities: (list (ent #:type 'crate #:x 100 #:y 216 #:width 16 #:height 8
+                                                       #:solid? #t #:immovable? #t)
+                                                  (ent #:type 'walker #:x 40 #:y 208 #:width 16 #:height 16
+                                                       #:vx 2 #:gravity? #t #:solid? #t)))
+                      (lambda (game dt)
+                        (game-scene-set! game
+                          (scene-map-entities (game-scene game)
+                            (lambda (s e) (if (eq? (entity-type e) 'walker) (entity-set e #:vx 2) e))))))))
+    (run! g 60 (lambda (f g) #f))
+    (test "the walker is stopped flush at the crate's side, on the floor" '(84 208 #t)
+          (map (cut entity-ref (find-type g 'walker) <>) '(#:x #:y #:on-ground?))))
+  (let ((g (game-with (make-sprite-scene
+                       entities: (list (ent #:type 'block #:x 100 #:y 100 #:width 16 #:height 16
+                                            #:solid? #t #:immovable? #t)
+                                       (ent #:type 'mover #:x 80 #:y 96 #:width 16 #:height 16 #:vx 2
+                                            #:solid? #t))))))
+    (run! g 10 (lambda (f g) #f))
+    (test "a top-down mover is stopped at the block's side, not lifted over it" '(84 96 0)
+          (map (cut entity-ref (find-type g 'mover) <>) '(#:x #:y #:vx))))
+  (let ((g (game-with (make-sprite-scene
+                       entities: (list (ent #:type 'block #:x 100 #:y 100 #:width 16 #:height 16
+                                            #:solid? #t #:immovable? #t)
+                                       (ent #:type 'faller #:x 85 #:y 80 #:width 16 #:height 16
+                                            #:gravity? #t #:solid? #t))))))
+    (run! g 10 (lambda (f g) #f))
+    (test "a body falling onto the block's edge (1 px over it) lands on top" '(85 84)
+          (map (cut entity-ref (find-type g 'faller) <>) '(#:x #:y)))))
+
 (test-group "scenario: a tweened platform skipping the velocity steps still hits walls"
   ;; The tween drives #:x; update: keeps #:vx at 1 as the direction of
   ;; travel, which is what tile resolution reads (velocity-x is skipped).

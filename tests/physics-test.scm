@@ -1,7 +1,7 @@
 ;;; The physics contract, rule by rule: one group per section of the
 ;;; contract, named after it. Integer inputs, exact expected values.
 
-(import scheme (chicken base) (chicken string)
+(import scheme (chicken base) (chicken string) (chicken format)
         (downstroke test) (downstroke entity) (downstroke tilemap)
         (downstroke scene) (downstroke physics) srfi-4)
 
@@ -225,6 +225,15 @@
     (test "landing: mover above the immovable's centre is pushed up, not sideways"
           '(0 -2 0) (at (car r) #:x #:y #:vy))
     (test "the immovable one does not move" '(9 8) (at (cadr r) #:x #:y)))
+  ;; The same overlap when the mover is not falling (2.4.2: "falling onto"):
+  ;; no landing, the shallow axis (x, 1 px) as for any other contact.
+  (for-each
+   (lambda (vy)
+     (let ((r (pair-result (box 0 0 #:vy vy)
+                           (ent #:solid? #t #:immovable? #t #:x 9 #:y 8 #:width 40 #:height 8))))
+       (test (sprintf "not falling (vy = ~a): pushed out sideways, not up" vy)
+             '(-1 0 0) (at (car r) #:x #:y #:vx))))
+   '(0 -3))
   (let ((r (pair-result (box 0 10 #:vx 4)
                         (ent #:solid? #t #:immovable? #t #:x 8 #:y 0 #:width 10 #:height 20))))
     (test "one immovable, mover below its centre: full overlap on the shallow axis, velocity 0"
