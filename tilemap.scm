@@ -93,7 +93,9 @@
    ;; properties
    property-ref property-type
    ;; loading
-   load-tilemap tilemap-max-cells)
+   load-tilemap tilemap-max-cells
+   ;; tilesets without a map (sprite scenes)
+   load-tileset make-sheet-tileset)
 
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
@@ -544,10 +546,13 @@
   ;; attempt to allocate.
   (define tilemap-max-cells (make-parameter (* 8192 8192)))
 
+  ;; The procedure a loading error is reported from.
+  (define loader (make-parameter 'load-tilemap))
+
   (define (tmx-error file fmt . args)
     (let ((msg (string-append file ": " (apply sprintf fmt args))))
       (abort (make-composite-condition
-              (make-property-condition 'exn 'location 'load-tilemap
+              (make-property-condition 'exn 'location (loader)
                                        'message msg 'arguments '())
               (make-property-condition 'tmx 'file file)))))
 
@@ -1451,4 +1456,57 @@
       (lambda ()
         (unless (file-exists? path)
           (tmx-error path "no such file"))
-        (read-tilemap path)))))
+        (read-tilemap path))))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Tilesets without a map
+
+  ;; A .tsx file on its own: the sprites of a scene without a map
+  ;; (make-sprite-scene tileset:). Its gids start at first-gid, as in a map
+  ;; that listed the file there, so 1 is its first tile by default. Errors
+  ;; are the loader's: they name the file and what is wrong.
+  (define (load-tileset path #!key (first-gid 1))
+    (unless (string? path)
+      (error 'load-tileset "the path must be a string" path))
+    (check-first-gid 'load-tileset first-gid)
+    (parameterize ((loader 'load-tileset))
+      (with-tmx-context path "cannot load the tileset"
+        (lambda ()
+          (unless (and (file-exists? path) (not (directory-exists? path)))
+            (tmx-error path "no such file"))
+          (let ((path (normalize-pathname path)))
+            (parse-tileset path (read-root (cons path "tileset") path 'tileset)
+                           first-gid path))))))
+
+  ;; A sprite sheet described in code: an image cut into a grid of tiles of
+  ;; tile-width x tile-height, columns to a row, read left to right and top
+  ;; to bottom (what Tiled calls a tileset based on one image). The image
+  ;; must exist; it is not decoded here (the pure core never touches SDL).
+  (define (make-sheet-tileset image #!key tile-width tile-height columns
+                              (tile-count #f) (spacing 0) (margin 0)
+                              (first-gid 1) (name ""))
+    (define (natural key v minimum)
+      (unless (and (exact-integer? v) (>= v minimum))
+        (error 'make-sheet-tileset
+               (sprintf "sheet ~s: ~a is ~s, expected an integer of at least ~a"
+                        image key v minimum))))
+    (unless (string? image)
+      (error 'make-sheet-tileset "the image path must be a string" image))
+    (natural "tile-width:" tile-width 1)
+    (natural "tile-height:" tile-height 1)
+    (natural "columns:" columns 1)
+    (natural "spacing:" spacing 0)
+    (natural "margin:" margin 0)
+    (when tile-count (natural "tile-count:" tile-count 0))
+    (check-first-gid 'make-sheet-tileset first-gid)
+    (unless (and (file-exists? image) (not (directory-exists? image)))
+      (error 'make-sheet-tileset (sprintf "sheet ~s: no such image file" image)))
+    (let ((tiles (make-hash-table eqv?)))
+      (hash-table-set! tiles 'order '())
+      (make-tileset first-gid name "" #f tile-width tile-height spacing margin
+                    tile-count columns (make-image (normalize-pathname image) #f #f #f)
+                    0 0 'unspecified #f '() tiles)))
+
+  (define (check-first-gid who first-gid)
+    (unless (and (exact-integer? first-gid) (> first-gid 0))
+      (error who (sprintf "first-gid: is ~s, expected a positive integer" first-gid)))))

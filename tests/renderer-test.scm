@@ -222,5 +222,31 @@
     (test "tile-id 1 is the tileset's first tile" (list rn-red rn-green) (list (px 1 1) (px 6 1)))
     (test "#:facing -1 mirrors the sprite" (list rn-green rn-red) (list (px 21 1) (px 26 1)))))
 
+(test-group "renderer: sprites from a tileset without a map"
+  ;; The same sheet twice: described in code, and as a lone .tsx whose gids
+  ;; start at 5. Either one draws a sprite scene's #:tile-id.
+  (with-output-to-file (rn-path "sheet.tsx")
+    (lambda ()
+      (display "<?xml version=\"1.0\"?>\n<tileset name=\"t\" tilewidth=\"8\" tileheight=\"8\" spacing=\"1\" margin=\"2\" tilecount=\"4\" columns=\"2\">\n <image source=\"tiles.png\" width=\"21\" height=\"21\"/>\n</tileset>\n")))
+  (define (sprites ts first)
+    (rn-draw (make-sprite-scene tileset: ts tileset-texture: rn-texture background: rn-bg
+                                entities: (list (list #:x 0 #:y 0 #:tile-id first)
+                                                (list #:x 10 #:y 0 #:tile-id (+ first 3))
+                                                (list #:x 20 #:y 0 #:tile-id (+ first 1) #:facing -1)))))
+  (for-each
+   (lambda (name ts first)
+     (let ((px (sprites ts first)))
+       (test (string-append name ": the first tile, cut past margin and spacing")
+             (list rn-red rn-green rn-blue rn-white) (list (px 0 0) (px 7 0) (px 0 7) (px 7 7)))
+       (test (string-append name ": the fourth tile") (list rn-cyan rn-cyan rn-bg-pixel)
+             (list (px 10 0) (px 17 7) (px 18 0)))
+       (test (string-append name ": the second tile, mirrored") (list rn-yellow rn-yellow)
+             (list (px 20 0) (px 27 7)))))
+   '("make-sheet-tileset" "load-tileset")
+   (list (make-sheet-tileset (rn-path "tiles.png") tile-width: 8 tile-height: 8 columns: 2
+                             spacing: 1 margin: 2 tile-count: 4)
+         (load-tileset (rn-path "sheet.tsx") first-gid: 5))
+   '(1 5)))
+
 (free-surface! rn-surface)
 (delete-directory rn-dir #t)
