@@ -6,6 +6,7 @@
 
 (import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
         (chicken string) (chicken sort) (chicken gc) (chicken io) (chicken condition)
+        (only (chicken file) directory-exists?) (only (chicken pathname) pathname-directory)
         (downstroke entity) (downstroke scene) (downstroke tilemap)
         (downstroke physics) (downstroke engine) (downstroke tween) (downstroke animation))
 
@@ -287,6 +288,11 @@
   (let ((m (member name args))) (if (and m (pair? (cdr m))) (cadr m) default)))
 (define runs (string->number (flag-value "--runs" "3")))
 (define csv-file (flag-value "--csv" "bench/results.csv"))
+;; Said before the runs, not after minutes of them.
+(let ((dir (pathname-directory csv-file)))
+  (when (and dir (not (directory-exists? dir)))
+    (error 'bench (sprintf "no directory ~s for the CSV file ~s (run from the repository root, or give --csv FILE)"
+                           dir csv-file))))
 (define quick? (member "--quick" args))
 ;; --mode M keeps only that mode: discrete or swept (S1, S3), all-pairs or
 ;; spatial-hash (S2).
