@@ -16,7 +16,7 @@
    game-frame game-asset game-asset-set!
    engine-pipeline default-engine-update run-engine-update!
    game-start! game-step!
-   game-run! game-recording game-surface game-load-scene! game-textures
+   game-run! game-recording game-surface game-load-scene! game-load-tilesets! game-textures
    game-add-state! game-state-set! game-current-state game-states)
 
   (import scheme (chicken base) (chicken format) (chicken process-context) (chicken fixnum)
@@ -540,33 +540,43 @@ EOF
   ;; Every image the map draws: tileset images, tile images of image
   ;; collections, image layers' images; each path once, in that order.
   (define (tilemap-image-paths tm)
-    (let* ((tileset-paths
-            (append-map*
-             (lambda (ts)
-               (let ((img (tileset-image ts)))
-                 (if img
-                     (list (image-source img))
-                     (map (lambda (t) (and (tile-image t) (image-source (tile-image t))))
-                          (tileset-tiles ts)))))
-             (tilemap-tilesets tm)))
-           (layer-paths (map (lambda (l) (and (layer-image l) (image-source (layer-image l))))
-                             (tilemap-image-layers tm))))
-      (let add ((ps (append tileset-paths layer-paths)) (out '()))
-        (cond ((null? ps) (reverse out))
-              ((or (not (car ps)) (member (car ps) out)) (add (cdr ps) out))
-              (else (add (cdr ps) (cons (car ps) out)))))))
+    (distinct-paths
+     (append (tileset-image-paths (tilemap-tilesets tm))
+             (map (lambda (l) (and (layer-image l) (image-source (layer-image l))))
+                  (tilemap-image-layers tm)))))
+
+  ;; A tileset's image, or its tiles' images for an image collection (#f
+  ;; where a tile has none).
+  (define (tileset-image-paths tilesets)
+    (append-map*
+     (lambda (ts)
+       (let ((img (tileset-image ts)))
+         (if img
+             (list (image-source img))
+             (map (lambda (t) (and (tile-image t) (image-source (tile-image t))))
+                  (tileset-tiles ts)))))
+     tilesets))
+
+  (define (distinct-paths ps)
+    (let add ((ps ps) (out '()))
+      (cond ((null? ps) (reverse out))
+            ((or (not (car ps)) (member (car ps) out)) (add (cdr ps) out))
+            (else (add (cdr ps) (cons (car ps) out))))))
 
   (define (append-map* f l) (apply append (map f l)))
 
   (define unset-key (list 'unset))
 
+  (define (live-game-renderer who game what)
+    (let ((r (game-renderer game)))
+      (unless (and r (renderer-alive? r))
+        (error who (sprintf "no renderer: call it from a hook during game-run! (loading ~a)" what)))
+      r))
+
   (define (game-load-scene! game tmx-path #!key (entities '()) (background #f)
                             (camera (make-camera)) (camera-target 'camera-target)
                             (engine-update #f) (objects->entities unset-key) (prefabs #f))
-    (let ((r (game-renderer game)))
-      (unless (and r (renderer-alive? r))
-        (error 'game-load-scene!
-               (sprintf "no renderer: call it from a hook during game-run! (loading ~s)" tmx-path)))
+    (let ((r (live-game-renderer 'game-load-scene! game (sprintf "~s" tmx-path))))
       (let* ((tm (load-tilemap tmx-path))
              (_ (check-map-orientation 'game-load-scene! tm))
              (convert (if (eq? objects->entities unset-key) (and prefabs #t) objects->entities))
@@ -589,6 +599,32 @@ EOF
         (game-textures-set! game textures)
         (game-scene-set! game scene)
         scene)))
+
+  ;;; (game-load-tilesets! game tilesets) loads a texture for every image
+  ;;; of these tilesets (from load-tileset, make-sheet-tileset or a map)
+  ;;; that the game has none for yet, and adds them to game-textures: a
+  ;;; scene whose map or sprites are built in code draws from them. They
+  ;;; belong to the game like a loaded scene's: the next game-load-scene!
+  ;;; or the end of game-run! frees them. All are loaded or none (a failure
+  ;;; frees what it loaded and changes nothing). Returns the tilesets.
+  (define (game-load-tilesets! game tilesets)
+    (unless (and (list? tilesets) (every-tileset? tilesets))
+      (error 'game-load-tilesets! "expected a list of tilesets" tilesets))
+    (let* ((r (live-game-renderer 'game-load-tilesets! game
+                                  (sprintf "~a tileset~a" (length tilesets)
+                                           (if (= 1 (length tilesets)) "" "s"))))
+           (have (game-textures game))
+           (paths (filter-paths (lambda (p) (not (assoc p have)))
+                                (distinct-paths (tileset-image-paths tilesets)))))
+      (game-textures-set! game (append have (load-textures! r paths)))
+      tilesets))
+
+  (define (every-tileset? l) (or (null? l) (and (tileset? (car l)) (every-tileset? (cdr l)))))
+
+  (define (filter-paths keep? ps)
+    (cond ((null? ps) '())
+          ((keep? (car ps)) (cons (car ps) (filter-paths keep? (cdr ps))))
+          (else (filter-paths keep? (cdr ps)))))
 
   ;; (path . texture) for each path; on a failure the ones loaded are freed.
   (define (load-textures! r paths)

@@ -94,8 +94,10 @@
   (make-game
    title: "Downstroke animation" width: 320 height: 240 scale: 2
    create: (lambda (game)
-             ;; load the level only for its tilesets and their textures
-             (let ((tilesets (tilemap-tilesets (scene-tilemap (game-load-scene! game "demo/levels/platformer.tmx")))))
+             ;; the level's two tilesets, at the gids the level gives them
+             (let ((tilesets (game-load-tilesets!
+                              game (list (load-tileset "demo/levels/tiles.tsx")
+                                         (load-tileset "demo/levels/sprites.tsx" first-gid: 9)))))
                (game-scene-set! game (make-scene tilemap: (stage tilesets) tileset: (cadr tilesets)
                                                  entities: characters background: '(92 148 252))))
              (set! font (make-sprite-font (img-load-texture! (game-renderer game) "demo/assets/font.png")

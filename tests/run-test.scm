@@ -5,7 +5,8 @@
 
 (import scheme (chicken base) (chicken string) (chicken file) srfi-4 (only (downstroke util) take)
         (downstroke test) (downstroke sdl2) (downstroke entity) (downstroke scene)
-        (downstroke input) (downstroke engine))
+        (downstroke input) (downstroke engine)
+        (only (downstroke tilemap) make-sheet-tileset))
 (include-relative "pixels.scm")
 
 ;; Earlier suites may leave SDL initialised, and game-run! leaves an SDL it
@@ -252,6 +253,56 @@
     (test-error "game-load-scene! needs a running game"
                 (lambda (exn) (substring-index "renderer" (error-text exn)))
                 (game-load-scene! (run-game) (path "m.tmx")))))
+
+(test-group "game-run!: game-load-tilesets!"
+  ;; A sprite scene from a sheet made in code: no map anywhere. Sprites
+  ;; gid 1 (red) and 2 (blue) draw from the texture game-load-tilesets!
+  ;; loaded; a second call for the same image loads nothing more.
+  (let* ((dir (create-temporary-directory))
+         (png (string-append dir "/s.png"))
+         (seen #f) (pixels #f) (textures-in-run #f)
+         (g (run-game
+             preload: (lambda (g) (write-tiles-png! png 8 '((255 0 0) (0 0 255))))
+             create: (lambda (g)
+                       (let* ((sheet (make-sheet-tileset png tile-width: 8 tile-height: 8 columns: 2))
+                              (back (game-load-tilesets! g (list sheet)))
+                              (once (length (game-textures g))))
+                         (game-load-tilesets! g (list sheet))
+                         (set! seen (list (eq? (car back) sheet) once (length (game-textures g))
+                                          (texture-alive? (cdar (game-textures g)))))
+                         (set! textures-in-run (game-textures g))
+                         (game-scene-set! g (make-sprite-scene
+                                             tileset: sheet background: '(0 255 0) camera-target: #f
+                                             entities: (list (plist->entity (list #:x 0 #:y 0 #:tile-id 1))
+                                                             (plist->entity (list #:x 10 #:y 0 #:tile-id 2)))))))
+             render: (lambda (g)
+                       (let ((r (game-renderer g)))
+                         (set! pixels (map (lambda (xy) (renderer-pixel r (car xy) (cadr xy)))
+                                           '((3 3) (13 3) (20 3)))))))))
+    (game-run! g frames: 1)
+    (test "it returns the tilesets; one texture, loaded once" '(#t 1 1 #t) seen)
+    (test "the sprites are drawn from it, with no map and no tileset-texture:"
+          '((255 0 0 255) (0 0 255 255) (0 255 0 255)) pixels)
+    (test-assert "the game frees it at the end of the run" (not (texture-alive? (cdar textures-in-run))))
+    (test "and forgets it" '() (game-textures g))
+    (test-error "it needs a running game"
+                (lambda (exn) (substring-index "renderer" (error-text exn)))
+                (game-load-tilesets! (run-game) '()))
+    (test-error "it takes a list of tilesets"
+                (lambda (exn) (substring-index "tilesets" (error-text exn)))
+                (game-load-tilesets! (run-game) (list png)))
+    (let* ((missing #f)
+           (g (run-game preload: (lambda (g) (write-tiles-png! png 8 '((255 0 0) (0 0 255))))
+                        create: (lambda (g)
+                                  (let ((sheet (make-sheet-tileset png tile-width: 8 tile-height: 8 columns: 2)))
+                                    (delete-file png)
+                                    (set! missing
+                                      (handle-exceptions exn (list (substring-index "s.png" (error-text exn))
+                                                                   (game-textures g))
+                                        (game-load-tilesets! g (list sheet)))))))))
+      (game-run! g frames: 0)
+      (test-assert "an image that fails to load is an error naming it, and nothing is added"
+                   (and (car missing) (null? (cadr missing)))))))
 
 (test-group "game-run!: headless? and screenshot"
   (let* ((dir (create-temporary-directory))
