@@ -64,7 +64,7 @@ $(BUILD)/downstroke.sound.so:     $(BUILD)/downstroke.sdl2.so
 $(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.sdl2.so
 $(BUILD)/downstroke.assets.so:    $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.prefabs.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.text.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
+$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.util.so $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.text.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
 $(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
 
 # Tiled's own example maps, from Debian's tiled package (cached in tests/data).

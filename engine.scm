@@ -25,7 +25,8 @@
           (downstroke tween) (downstroke animation) (downstroke srfi-197)
           (downstroke assets)
           (downstroke sdl2) (downstroke renderer) (downstroke input)
-          (downstroke tilemap))
+          (downstroke tilemap)
+          (only (downstroke util) filter every append-map delete-duplicates))
 
   (define-record-type game
     (%make-game title width height scale frame-delay input-config
@@ -548,7 +549,7 @@ EOF
   ;; A tileset's image, or its tiles' images for an image collection (#f
   ;; where a tile has none).
   (define (tileset-image-paths tilesets)
-    (append-map*
+    (append-map
      (lambda (ts)
        (let ((img (tileset-image ts)))
          (if img
@@ -557,13 +558,8 @@ EOF
                   (tileset-tiles ts)))))
      tilesets))
 
-  (define (distinct-paths ps)
-    (let add ((ps ps) (out '()))
-      (cond ((null? ps) (reverse out))
-            ((or (not (car ps)) (member (car ps) out)) (add (cdr ps) out))
-            (else (add (cdr ps) (cons (car ps) out))))))
-
-  (define (append-map* f l) (apply append (map f l)))
+  ;; The paths given (#f left out), each once, in their first order.
+  (define (distinct-paths ps) (delete-duplicates (filter string? ps)))
 
   (define unset-key (list 'unset))
 
@@ -608,23 +604,16 @@ EOF
   ;;; or the end of game-run! frees them. All are loaded or none (a failure
   ;;; frees what it loaded and changes nothing). Returns the tilesets.
   (define (game-load-tilesets! game tilesets)
-    (unless (and (list? tilesets) (every-tileset? tilesets))
+    (unless (and (list? tilesets) (every tileset? tilesets))
       (error 'game-load-tilesets! "expected a list of tilesets" tilesets))
     (let* ((r (live-game-renderer 'game-load-tilesets! game
                                   (sprintf "~a tileset~a" (length tilesets)
                                            (if (= 1 (length tilesets)) "" "s"))))
            (have (game-textures game))
-           (paths (filter-paths (lambda (p) (not (assoc p have)))
-                                (distinct-paths (tileset-image-paths tilesets)))))
+           (paths (filter (lambda (p) (not (assoc p have)))
+                          (distinct-paths (tileset-image-paths tilesets)))))
       (game-textures-set! game (append have (load-textures! r paths)))
       tilesets))
-
-  (define (every-tileset? l) (or (null? l) (and (tileset? (car l)) (every-tileset? (cdr l)))))
-
-  (define (filter-paths keep? ps)
-    (cond ((null? ps) '())
-          ((keep? (car ps)) (cons (car ps) (filter-paths keep? (cdr ps))))
-          (else (filter-paths keep? (cdr ps)))))
 
   ;; (path . texture) for each path; on a failure the ones loaded are freed.
   (define (load-textures! r paths)

@@ -692,8 +692,11 @@
         (normalize-pathname path)
         (normalize-pathname (make-pathname (pathname-directory relative-to) path))))
 
+  ;; A file a path names: present, and not a directory.
+  (define (regular-file? path) (and (file-exists? path) (not (directory-exists? path))))
+
   (define (check-exists ctx path what)
-    (unless (and (file-exists? path) (not (directory-exists? path)))
+    (unless (regular-file? path)
       (tmx-error (ctx-file ctx) "~a: ~a file ~s not found" (ctx-what ctx) what path)))
 
   ;; The root element of an XML file, which must be a <tag>.
@@ -1468,11 +1471,11 @@
   (define (load-tileset path #!key (first-gid 1))
     (unless (string? path)
       (error 'load-tileset "the path must be a string" path))
-    (check-first-gid 'load-tileset first-gid)
+    (check-integer 'load-tileset "" "first-gid:" first-gid 1)
     (parameterize ((loader 'load-tileset))
       (with-tmx-context path "cannot load the tileset"
         (lambda ()
-          (unless (and (file-exists? path) (not (directory-exists? path)))
+          (unless (regular-file? path)
             (tmx-error path "no such file"))
           (let ((path (normalize-pathname path)))
             (parse-tileset path (read-root (cons path "tileset") path 'tileset)
@@ -1486,10 +1489,7 @@
                               (tile-count #f) (spacing 0) (margin 0)
                               (first-gid 1) (name ""))
     (define (natural key v minimum)
-      (unless (and (exact-integer? v) (>= v minimum))
-        (error 'make-sheet-tileset
-               (sprintf "sheet ~s: ~a is ~s, expected an integer of at least ~a"
-                        image key v minimum))))
+      (check-integer 'make-sheet-tileset (sprintf "sheet ~s: " image) key v minimum))
     (unless (string? image)
       (error 'make-sheet-tileset "the image path must be a string" image))
     (natural "tile-width:" tile-width 1)
@@ -1498,8 +1498,8 @@
     (natural "spacing:" spacing 0)
     (natural "margin:" margin 0)
     (when tile-count (natural "tile-count:" tile-count 0))
-    (check-first-gid 'make-sheet-tileset first-gid)
-    (unless (and (file-exists? image) (not (directory-exists? image)))
+    (natural "first-gid:" first-gid 1)
+    (unless (regular-file? image)
       (error 'make-sheet-tileset (sprintf "sheet ~s: no such image file" image)))
     (let ((tiles (make-hash-table eqv?)))
       (hash-table-set! tiles 'order '())
@@ -1507,6 +1507,6 @@
                     tile-count columns (make-image (normalize-pathname image) #f #f #f)
                     0 0 'unspecified #f '() tiles)))
 
-  (define (check-first-gid who first-gid)
-    (unless (and (exact-integer? first-gid) (> first-gid 0))
-      (error who (sprintf "first-gid: is ~s, expected a positive integer" first-gid)))))
+  (define (check-integer who prefix key v minimum)
+    (unless (and (exact-integer? v) (>= v minimum))
+      (error who (sprintf "~a~a is ~s, expected an integer of at least ~a" prefix key v minimum)))))
