@@ -25,8 +25,10 @@ LINK_text   := $(SDL_CFLAGS) -L -lSDL2 -L -lSDL2_ttf
 
 LIBS := $(patsubst %,$(BUILD)/downstroke.%.so,$(MODULES))
 
-# Compiled modules are found in build/ first, then in CHICKEN's own repository.
-CHICKEN_REPO = $(shell chicken-install -repository 2>/dev/null)
+# Compiled modules are found in build/ first, then in CHICKEN's own repository
+# (asked with CHICKEN_INSTALL_REPOSITORY unset, which would otherwise name
+# the install destination instead).
+CHICKEN_REPO = $(shell env -u CHICKEN_INSTALL_REPOSITORY chicken-install -repository 2>/dev/null)
 export CHICKEN_REPOSITORY_PATH = $(abspath $(BUILD)):$(CHICKEN_REPO)
 
 # Tests and benchmarks run headless; demos open a window when there is a display.
@@ -74,7 +76,8 @@ examples:
 test: libs examples assets
 	cd tests && $(HEADLESS) DOWNSTROKE_MAKE=1 csi -q -s run.scm
 
-# The demos' art and sounds are generated, not stored: demo/assets/.
+# The demos' art and sounds are generated, not stored: demo/assets/. The
+# generator makes them only when missing or older than itself.
 assets: libs
 	@$(HEADLESS) csi -q -s tools/make-assets.scm
 

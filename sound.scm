@@ -50,6 +50,45 @@
   (foreign-declare #<<EOF
 #include <SDL.h>
 #include <SDL_mixer.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+/* While SDL looks for a device, alsa-lib writes its own complaints to
+   stderr (eight lines on a machine without a sound card); the reason
+   reaches the game through SDL's error text anyway. stderr goes to
+   /dev/null for the open and comes back after it; DOWNSTROKE_AUDIO_DEBUG
+   keeps it. Answers the saved descriptor, or -1 when nothing was moved. */
+static int ds_mute_stderr(void) {
+  int saved, null;
+  if (getenv("DOWNSTROKE_AUDIO_DEBUG")) return -1;
+  fflush(stderr);
+  saved = dup(2);
+  if (saved < 0) return -1;
+  null = open("/dev/null", O_WRONLY);
+  if (null < 0) { close(saved); return -1; }
+  dup2(null, 2);
+  close(null);
+  return saved;
+}
+
+static void ds_restore_stderr(int saved) {
+  if (saved < 0) return;
+  fflush(stderr);
+  dup2(saved, 2);
+  close(saved);
+}
+
+/* SDL's audio subsystem and SDL_mixer's device, opened with stderr muted:
+   0 on success, 1 when SDL_InitSubSystem failed, 2 when Mix_OpenAudio did
+   (the subsystem is closed again then). */
+static int ds_open_audio(int frequency, int channels, int chunk) {
+  int saved = ds_mute_stderr(), r = 0;
+  if (SDL_InitSubSystem(SDL_INIT_AUDIO) < 0) r = 1;
+  else if (Mix_OpenAudio(frequency, MIX_DEFAULT_FORMAT, channels, chunk) < 0) r = 2;
+  ds_restore_stderr(saved);
+  return r;
+}
 EOF
 )
 
@@ -98,19 +137,13 @@ EOF
     (check-positive 'init-audio! "channels:" channels)
     (check-positive 'init-audio! "chunk-size:" chunk-size)
     (unless opened?
-      (when (< ((foreign-lambda int "SDL_InitSubSystem" unsigned-int)
+      (case ((foreign-lambda int "ds_open_audio" int int int) frequency channels chunk-size)
+        ((1) (sound-error 'init-audio!
+                          (sprintf "SDL_InitSubSystem(SDL_INIT_AUDIO): ~a" (mix-get-error))))
+        ((2) (let ((text (mix-get-error)))
+               ((foreign-lambda void "SDL_QuitSubSystem" unsigned-int)
                 (foreign-value "SDL_INIT_AUDIO" unsigned-int))
-               0)
-        (sound-error 'init-audio!
-                     (sprintf "SDL_InitSubSystem(SDL_INIT_AUDIO): ~a" (mix-get-error))))
-      (when (< ((foreign-lambda int "Mix_OpenAudio" int unsigned-short int int)
-                frequency (foreign-value "MIX_DEFAULT_FORMAT" unsigned-short)
-                channels chunk-size)
-               0)
-        (let ((text (mix-get-error)))
-          ((foreign-lambda void "SDL_QuitSubSystem" unsigned-int)
-           (foreign-value "SDL_INIT_AUDIO" unsigned-int))
-          (sound-error 'init-audio! (sprintf "Mix_OpenAudio: ~a" text))))
+               (sound-error 'init-audio! (sprintf "Mix_OpenAudio: ~a" text)))))
       (set! opened? #t)
       (apply-sound-volume!))
     (void))

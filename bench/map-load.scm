@@ -2,7 +2,7 @@
 ;;; in CSV into a temporary directory, each loaded several times with
 ;;; load-tilemap. Prints the median load time and cells per second.
 ;;;
-;;;   CHICKEN_REPOSITORY_PATH=build:$(chicken-install -repository) csi -q -s bench/map-load.scm [RUNS]
+;;;   CHICKEN_REPOSITORY_PATH=build:$(env -u CHICKEN_INSTALL_REPOSITORY chicken-install -repository) csi -q -s bench/map-load.scm [RUNS]
 
 (import scheme (chicken base) (chicken format) (chicken file) (chicken pathname)
         (chicken time) (chicken sort) (chicken file posix) (chicken process-context) (chicken bitwise)

@@ -7,7 +7,7 @@
 ;;; render-present!. Only the cells inside the view are drawn, so the cost
 ;;; must not grow with the map's size.
 ;;;
-;;;   SDL_VIDEODRIVER=dummy CHICKEN_REPOSITORY_PATH=build:$(chicken-install -repository) \
+;;;   SDL_VIDEODRIVER=dummy CHICKEN_REPOSITORY_PATH=build:$(env -u CHICKEN_INSTALL_REPOSITORY chicken-install -repository) \
 ;;;     csi -q -s bench/render.scm [RUNS]
 ;;;
 ;;; The tileset is a 64 x 64 PNG of 16 tiles (16 x 16 px), generated at run

@@ -32,7 +32,7 @@
 (define an-spin '((21 . 6) (22 . 6) (23 . 6) (22 . 6)))
 (define an-flicker '((24 . 6) (25 . 5) (26 . 7)))
 
-(define an-shot "/tmp/an-demo-animation.png")
+(define an-shot (demo-tmp "an-demo-animation.png"))
 
 (test-group "demo: animation"
   (when (file-exists? an-shot) (delete-file an-shot))

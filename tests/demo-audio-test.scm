@@ -6,6 +6,7 @@
 (import scheme (chicken base) (chicken io) (chicken process) (chicken file)
         (chicken string) (downstroke test))
 (include-relative "pixels.scm")
+(include-relative "demo-support.scm")
 
 ;; The lines a demo prints, then "exit N" with its exit status.
 (define (au-run env args)
@@ -20,8 +21,8 @@
 
 (define (au-script! path script) (with-output-to-file path (lambda () (write script))))
 
-(define au-shot "/tmp/au-demo-audio.png")
-(define au-silent-shot "/tmp/au-demo-audio-silent.png")
+(define au-shot (demo-tmp "au-demo-audio.png"))
+(define au-silent-shot (demo-tmp "au-demo-audio-silent.png"))
 
 ;; A colour test over the screenshot `path`.
 (define (au-count path colour x y w h) (png-count path (near-colour? colour 4) x y w h))
@@ -29,11 +30,11 @@
 (test-group "demo: audio"
   ;; 1 (jump) on frame 10, 2 (coin) on 20, m twice (music off, on again),
   ;; 3 (boom) on frame 50: its card is still lit on frame 59.
-  (au-script! "/tmp/au-script-all.scm"
+  (au-script! (demo-tmp "au-script-all.scm")
               '((10 (tap a)) (20 (tap b)) (30 (tap start)) (40 (tap start)) (50 (tap select))))
   (when (file-exists? au-shot) (delete-file au-shot))
   (let ((lines (au-run "SDL_AUDIODRIVER=dummy"
-                       (string-append "bin/demo-audio --headless --frames 60 --script /tmp/au-script-all.scm --screenshot " au-shot))))
+                       (string-append "bin/demo-audio --headless --frames 60 --script " (demo-tmp "au-script-all.scm") " --screenshot " au-shot))))
     (test "the three keys played the three effects, and the music plays again after m, m"
           "audio: device open #t, music playing #t, effects played (jump coin boom)"
           (au-final lines))
@@ -55,9 +56,9 @@
                  (> (au-count au-shot '(255 255 255) 40 400 450 20) 150)))
 
   ;; m once: the music stops; no effect is played.
-  (au-script! "/tmp/au-script-stop.scm" '((10 (tap start))))
+  (au-script! (demo-tmp "au-script-stop.scm") '((10 (tap start))))
   (let ((lines (au-run "SDL_AUDIODRIVER=dummy"
-                       (string-append "bin/demo-audio --headless --frames 20 --script /tmp/au-script-stop.scm --screenshot " au-shot))))
+                       (string-append "bin/demo-audio --headless --frames 20 --script " (demo-tmp "au-script-stop.scm") " --screenshot " au-shot))))
     (test "m stops the music"
           "audio: device open #t, music playing #f, effects played ()" (au-final lines)))
   (when (file-exists? au-shot)
@@ -69,7 +70,7 @@
   ;; An audio driver that does not exist: no device, and the demo runs anyway.
   (when (file-exists? au-silent-shot) (delete-file au-silent-shot))
   (let ((lines (au-run "SDL_AUDIODRIVER=no-such-driver"
-                       (string-append "bin/demo-audio --headless --frames 30 --script /tmp/au-script-all.scm --screenshot " au-silent-shot))))
+                       (string-append "bin/demo-audio --headless --frames 30 --script " (demo-tmp "au-script-all.scm") " --screenshot " au-silent-shot))))
     (test "with no audio device nothing plays, and the demo ends normally"
           '("audio: device open #f, music playing #f, effects played ()" "exit 0")
           (list (au-final lines) (au-exit lines))))

@@ -27,7 +27,7 @@
   (let ((m (modulo n 328)))
     (if (<= m 164) (+ 72 m) (- 236 (- m 164)))))
 
-(define sb-shot "/tmp/sb-demo-sandbox.png")
+(define sb-shot (demo-tmp "sb-demo-sandbox.png"))
 (define sb-scale 2)
 
 ;; Pixels of a world rectangle (x y w h) in the screenshot that satisfy keep?.

@@ -14,9 +14,9 @@
 ;; Runs the demo for `frames` with `script` (or none); returns its last line.
 (define (sh-demo! frames script shot)
   (when (file-exists? shot) (delete-file shot))
-  (when script (with-output-to-file "/tmp/sh-script.scm" (lambda () (write script))))
+  (when script (with-output-to-file (demo-tmp "sh-script.scm") (lambda () (write script))))
   (last-line (demo-output (sprintf "bin/demo-shmup --headless --frames ~a --screenshot ~a~a"
-                                 frames shot (if script " --script /tmp/sh-script.scm" "")))))
+                                 frames shot (if script (string-append " --script " (demo-tmp "sh-script.scm")) "")))))
 
 (define sh-ship '(120 220 255))
 (define sh-enemy '(230 80 90))
@@ -25,8 +25,8 @@
 
 (define (sh-count shot colour . rect) (apply png-count shot (near-colour? colour) rect))
 
-(define sh-idle "/tmp/sh-idle.png")
-(define sh-fire "/tmp/sh-fire.png")
+(define sh-idle (demo-tmp "sh-idle.png"))
+(define sh-fire (demo-tmp "sh-fire.png"))
 
 (test-group "demo: shmup"
   (test-group "200 frames without input"

@@ -18,21 +18,21 @@
           (else (loop (cdr cs) '() (flush))))))
 
 (test-group "demo: getting-started"
-  (with-output-to-file "/tmp/ds-gs-script.scm" (lambda () (write '((0 right) (10)))))
+  (with-output-to-file (demo-tmp "ds-gs-script.scm") (lambda () (write '((0 right) (10)))))
   (test "ten frames of the right arrow move the square 30 px"
         "getting-started: square at 180 110"
-        (last-line (demo-output "bin/demo-getting-started --headless --frames 30 --script /tmp/ds-gs-script.scm"))))
+        (last-line (demo-output (string-append "bin/demo-getting-started --headless --frames 30 --script " (demo-tmp "ds-gs-script.scm"))))))
 
 (test-group "demo: platformer"
-  (when (file-exists? "/tmp/ds-platformer.png") (delete-file "/tmp/ds-platformer.png"))
-  (let ((line (last-line (demo-output "bin/demo-platformer --headless --frames 120 --screenshot /tmp/ds-platformer.png"))))
+  (when (file-exists? (demo-tmp "ds-platformer.png")) (delete-file (demo-tmp "ds-platformer.png")))
+  (let ((line (last-line (demo-output (string-append "bin/demo-platformer --headless --frames 120 --screenshot " (demo-tmp "ds-platformer.png"))))))
     (test-assert "the player stands on the ground after 120 frames"
                  (substring-index "on-ground #t" line))
     ;; the line's numbers, read back: x y camera-x camera-y
     (let* ((numbers (ds-numbers line))
            (x (list-ref numbers 0)) (y (list-ref numbers 1))
            (cx (list-ref numbers 2)) (cy (list-ref numbers 3))
-           (shot "/tmp/ds-platformer.png")
+           (shot (demo-tmp "ds-platformer.png"))
            (scale 2)                    ; the demo's window scale
            (sx (* scale (- x cx))) (sy (* scale (- y cy))))
       (test "the player's shirt (12 x 4 px) is drawn where the line says"
@@ -44,8 +44,23 @@
                    (> (png-count shot (near-colour? '(92 148 252)) sx (- sy scale) (* 16 scale) scale) 0)))))
 
 (test-group "demo: getting-started screenshot"
-  (when (file-exists? "/tmp/ds-gs.png") (delete-file "/tmp/ds-gs.png"))
-  (demo-output "bin/demo-getting-started --headless --frames 30 --script /tmp/ds-gs-script.scm --screenshot /tmp/ds-gs.png")
+  (when (file-exists? (demo-tmp "ds-gs.png")) (delete-file (demo-tmp "ds-gs.png")))
+  (demo-output (string-append "bin/demo-getting-started --headless --frames 30 --script " (demo-tmp "ds-gs-script.scm") " --screenshot " (demo-tmp "ds-gs.png")))
   (test "the square is a 20 x 20 rect of its colour at (180, 110)" 400
-        (png-count "/tmp/ds-gs.png" (near-colour? '(240 200 60)) 180 110 20 20))
-  (test "and nowhere else" 400 (png-count "/tmp/ds-gs.png" (near-colour? '(240 200 60)))))
+        (png-count (demo-tmp "ds-gs.png") (near-colour? '(240 200 60)) 180 110 20 20))
+  (test "and nowhere else" 400 (png-count (demo-tmp "ds-gs.png") (near-colour? '(240 200 60)))))
+
+;; ALSA with a device that does not exist stands for a machine without a
+;; sound card: alsa-lib would print its own complaints on stderr.
+(test-group "demo: quiet without an audio device"
+  (let* ((err (demo-tmp "ds-quiet.err"))
+         (out (with-input-from-pipe
+               (string-append "cd .. && SDL_AUDIODRIVER=alsa AUDIODEV=downstroke-no-such-pcm "
+                              "bin/demo-platformer --headless --frames 5 2>" err)
+               read-lines))
+         (errors (with-input-from-file err read-lines)))
+    (test "nothing on stderr" '() errors)
+    (test "one line says there is no sound, and why" 1
+          (length (filter-lines "platformer: no sound (Mix_OpenAudio: ALSA: " out)))
+    (test-assert "and the demo ran to its end"
+                 (substring-index "on-ground #t" (last-line out)))))

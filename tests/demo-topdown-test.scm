@@ -13,7 +13,7 @@
 (define (td-script! path script)
   (with-output-to-file path (lambda () (write script))))
 
-(define td-shot "/tmp/td-demo-topdown.png")
+(define td-shot (demo-tmp "td-demo-topdown.png"))
 (define td-scale 2)                     ; the demo's window scale
 
 ;; Pixels of a 16 x 16 world rectangle at (x, y) seen through a camera at
@@ -35,17 +35,17 @@
     ;; up-left for 39 moves of 2 px: up 48 px would cross the stone bar, so
     ;; y stops at 288 until x clears its left end (256 - 16 = 240), then goes
     ;; on up to 272; x goes 78 px left and picks up the coin at (288, 304)
-    (td-script! "/tmp/td-diagonal.scm" '((0 up left)))
+    (td-script! (demo-tmp "td-diagonal.scm") '((0 up left)))
     (test "the final line"
           "topdown: player at (226, 272) coins 1 of 19 camera (74, 144)"
-          (last-line (demo-output "bin/demo-topdown --headless --frames 40 --script /tmp/td-diagonal.scm"))))
+          (last-line (demo-output (string-append "bin/demo-topdown --headless --frames 40 --script " (demo-tmp "td-diagonal.scm"))))))
 
   (test-group "up, left along the coin row, down into the bottom wall"
     (when (file-exists? td-shot) (delete-file td-shot))
-    (td-script! "/tmp/td-walk.scm" '((0 up) (16 left) (76 down) (110)))
+    (td-script! (demo-tmp "td-walk.scm") '((0 up) (16 left) (76 down) (110)))
     (let ((line (last-line
                  (demo-output (string-append "bin/demo-topdown --headless --frames 130 --screenshot "
-                                        td-shot " --script /tmp/td-walk.scm")))))
+                                        td-shot (string-append " --script " (demo-tmp "td-walk.scm")))))))
       ;; 32 px up to the coin row, 120 px left over two coins, then down
       ;; until the wall: 368 - 16 = 352
       (test "the final line"

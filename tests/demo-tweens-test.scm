@@ -37,7 +37,7 @@
                       '() boxes)))
     (test (sprintf "after ~a frames every box is at start + 110 * ease(t)" frames) '() wrong)))
 
-(define tw-shot "/tmp/tw-demo-tweens.png")
+(define tw-shot (demo-tmp "tw-demo-tweens.png"))
 
 (test-group "demo: tweens"
   ;; 50 frames = 800 ms: the first run, going out, t = 4/5

@@ -18,7 +18,23 @@
 
 (import (downstroke test))
 
-(import (chicken string))
+(import (chicken string) (chicken pathname) (chicken process)
+        (chicken process-context posix) (chicken format))
+
+;; This process's module path, absolute, for the programs the suites start.
+(define (absolute-repository-path)
+  (string-intersperse
+   (map (lambda (dir) (if (absolute-pathname? dir) dir
+                          (normalize-pathname (make-pathname (current-directory) dir))))
+        (repository-path))
+   ":"))
+
+;; The demos' art, made when missing or stale (the generator decides), so
+;; `chicken-install -test` from a fresh clone has what the demos load.
+(unless (zero? (system (sprintf "cd .. && CHICKEN_REPOSITORY_PATH=~a csi -q -s tools/make-assets.scm >/dev/null"
+                                (qs (absolute-repository-path)))))
+  (print "run.scm: tools/make-assets.scm failed; the demo and docs suites need its files")
+  (exit 1))
 
 ;; DOWNSTROKE_SUITES="physics scene" runs only those suites.
 (define (suite-files)
@@ -28,4 +44,9 @@
         (sort (glob "*-test.scm") string<?))))
 
 (for-each load (suite-files))
+
+;; The demo suites' scratch directory (tests/demo-support.scm), if any.
+(let ((dir (make-pathname (or (get-environment-variable "TMPDIR") "/tmp")
+                          (sprintf "downstroke-tests-~a" (current-process-id)))))
+  (when (directory-exists? dir) (delete-directory dir #t)))
 (test-exit)

@@ -1,7 +1,8 @@
 ;;; Generates the demos' art and sound into demo/assets/ (git-ignored).
-;;;   CHICKEN_REPOSITORY_PATH=$PWD/build:$(chicken-install -repository) \
+;;;   CHICKEN_REPOSITORY_PATH=$PWD/build:$(env -u CHICKEN_INSTALL_REPOSITORY chicken-install -repository) \
 ;;;   SDL_VIDEODRIVER=dummy csi -q -s tools/make-assets.scm
-;;; Run from the repository root; running it again rewrites the same files.
+;;; Run from the repository root. It does nothing (and says nothing) when
+;;; every file is there and newer than this script; --force rewrites them.
 ;;;
 ;;; Images are drawn with filled rectangles through a software renderer on
 ;;; an RGBA surface and saved with img-save-png!. Sounds are 8-bit mono PCM
@@ -21,7 +22,8 @@
 ;;; a row; white 5 x 7 glyphs with a dark shadow one pixel down and right.
 ;;; Sounds: jump.wav, coin.wav, boom.wav (effects); music.wav, a 4 s loop.
 
-(import scheme (chicken base) (chicken format) (chicken file)
+(import scheme (chicken base) (chicken format) (chicken file) (chicken file posix)
+        (chicken process-context)
         (chicken bitwise) (chicken io) (downstroke sdl2))
 
 (define T 16)
@@ -349,14 +351,33 @@
 
 ;;; ------------------------------------------------------------------
 
-(create-directory out-dir #t)
-(init! '(video))
-(make-png! (string-append out-dir "/tiles.png") (* 8 T) T draw-tiles!)
-(make-png! (string-append out-dir "/sprites.png") (* 6 T) (* 3 T) draw-sprites!)
-(make-png! (string-append out-dir "/font.png") (* font-columns glyph-w) (* 6 glyph-h) draw-font!)
-(quit!)
-(write-wav! (string-append out-dir "/jump.wav") (square-sweep 300 700 150))
-(write-wav! (string-append out-dir "/coin.wav")
-            (append (square-sweep 990 990 60) (square-sweep 1320 1320 120)))
-(write-wav! (string-append out-dir "/boom.wav") (noise-burst 500))
-(write-wav! (string-append out-dir "/music.wav") (music-loop))
+(define asset-names
+  '("tiles.png" "sprites.png" "font.png" "jump.wav" "coin.wav" "boom.wav" "music.wav"))
+
+;; Every asset is there and newer than this generator: nothing to do.
+(define (assets-fresh?)
+  (let ((made (file-modification-time "tools/make-assets.scm")))
+    (every (lambda (name)
+             (let ((path (string-append out-dir "/" name)))
+               (and (file-exists? path) (>= (file-modification-time path) made))))
+           asset-names)))
+
+(define (every ok? ls) (or (null? ls) (and (ok? (car ls)) (every ok? (cdr ls)))))
+
+(define (make-assets!)
+  (create-directory out-dir #t)
+  (init! '(video))
+  (make-png! (string-append out-dir "/tiles.png") (* 8 T) T draw-tiles!)
+  (make-png! (string-append out-dir "/sprites.png") (* 6 T) (* 3 T) draw-sprites!)
+  (make-png! (string-append out-dir "/font.png") (* font-columns glyph-w) (* 6 glyph-h) draw-font!)
+  (quit!)
+  (write-wav! (string-append out-dir "/jump.wav") (square-sweep 300 700 150))
+  (write-wav! (string-append out-dir "/coin.wav")
+              (append (square-sweep 990 990 60) (square-sweep 1320 1320 120)))
+  (write-wav! (string-append out-dir "/boom.wav") (noise-burst 500))
+  (write-wav! (string-append out-dir "/music.wav") (music-loop)))
+
+;; --force rewrites them all; otherwise only missing or stale assets are made.
+(if (or (member "--force" (command-line-arguments)) (not (assets-fresh?)))
+    (make-assets!)
+    (void))

@@ -1,5 +1,5 @@
 ;;; Pictures for the documents, drawn headless by the library itself.
-;;;   SDL_VIDEODRIVER=dummy CHICKEN_REPOSITORY_PATH=$PWD/build:$(chicken-install -repository) \
+;;;   SDL_VIDEODRIVER=dummy CHICKEN_REPOSITORY_PATH=$PWD/build:$(env -u CHICKEN_INSTALL_REPOSITORY chicken-install -repository) \
 ;;;     csi -q -s tools/make-doc-images.scm
 ;;; run from the top of the source tree. It writes
 ;;;   docs/images/rendering-debug-overlay.png   (docs/rendering.org)

@@ -1,5 +1,5 @@
 ;;; Writes the fixture maps of tests/maps/ (run from the egg's directory:
-;;;   CHICKEN_REPOSITORY_PATH=build:$(chicken-install -repository) \
+;;;   CHICKEN_REPOSITORY_PATH=build:$(env -u CHICKEN_INSTALL_REPOSITORY chicken-install -repository) \
 ;;;     csi -q -s tools/make-tmx-fixtures.scm
 ;;; The files are committed; this script documents how the encoded ones were
 ;;; made (it uses only the encoders of (downstroke decode), never the loader).
