@@ -1,5 +1,7 @@
 # Downstroke: build, test, demo and bench.
-#   make test    install what is missing, build, run every suite headless
+#   make test    install what is missing, build, run every suite headless,
+#                then install the egg as a user would and run them again
+#   make check   just the suites, on build/ (the quick loop while working)
 #   make demo    install what is missing, build, run the platformer demo
 #   make bench   the benchmark scenes of bench-spec.md (never part of test)
 #   make screenshots  the demos' pictures in docs/images/
@@ -34,7 +36,7 @@ export CHICKEN_REPOSITORY_PATH = $(abspath $(BUILD)):$(CHICKEN_REPO)
 # Tests and benchmarks run headless; demos open a window when there is a display.
 HEADLESS := SDL_VIDEODRIVER=dummy SDL_AUDIODRIVER=dummy
 
-.PHONY: all deps libs examples assets test demo bench screenshots clean
+.PHONY: all deps libs examples assets check test install-test demo bench screenshots clean
 all: libs
 
 deps:
@@ -73,8 +75,16 @@ $(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downst
 examples:
 	@sh tools/fetch-tiled-examples.sh
 
-test: libs examples assets
+check: libs examples assets
 	cd tests && $(HEADLESS) DOWNSTROKE_MAKE=1 csi -q -s run.scm
+
+# After check, not beside it (-j2): a clean copy installed into a private
+# repository by an ordinary user, chicken-install -test, a static game build.
+test: check
+	@sh tools/install-test.sh
+
+install-test: deps
+	@sh tools/install-test.sh
 
 # The demos' art and sounds are generated, not stored: demo/assets/. The
 # generator makes them only when missing or older than itself.

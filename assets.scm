@@ -11,12 +11,19 @@
 ;;; registry only holds values: it never frees them; whoever loaded a
 ;;; resource frees it. asset-keys answers the keys in the order they were
 ;;; first set.
+;;;
+;;; Where a game's files are: (program-relative-path "levels/one.tmx") is
+;;; the path beside the running program when it is compiled (a shipped
+;;; binary finds its levels wherever it is started from), and relative to
+;;; the current directory under csi, where a game is developed.
 
 (module (downstroke assets)
   (make-asset-registry asset-registry? asset-set! asset-ref asset-keys
-   asset-exists? asset-remove!)
+   asset-exists? asset-remove!
+   program-directory program-relative-path)
 
-  (import scheme (chicken base) (chicken format)
+  (import scheme (chicken base) (chicken format) (chicken pathname)
+          (chicken platform) (chicken process-context)
           (only (downstroke util) make-hash-table hash-table-ref
                 hash-table-set! hash-table-exists? hash-table-delete!))
 
@@ -69,4 +76,20 @@
 
   (define (asset-keys r)
     (check 'asset-keys r)
-    (reverse (registry-keys r))))
+    (reverse (registry-keys r)))
+
+  ;; A compiled program's own directory (CHICKEN reads it from the system,
+  ;; /proc/self/exe on Linux); csi's would be /usr/bin, so under csi the
+  ;; current directory stands for the game's.
+  (define (program-directory)
+    (let ((exe (and (not (feature? #:csi)) (executable-pathname))))
+      (if exe
+          (or (pathname-directory exe) (current-directory))
+          (current-directory))))
+
+  (define (program-relative-path path)
+    (unless (string? path)
+      (error 'program-relative-path "the path must be a string" path))
+    (if (absolute-pathname? path)
+        path
+        (make-pathname (program-directory) path))))

@@ -1,3 +1,3 @@
-;;; Stands for the C libraries the egg links: tools/egg-csc replaces its
-;;; static object with a linker script naming them (see that file).
-(module (downstroke link-libraries) ())
+;;; Empty on purpose: the source of the downstroke.X-libraries components,
+;;; whose static object tools/egg-csc replaces with a linker script naming
+;;; the C libraries downstroke.X links (see that file).

@@ -52,3 +52,17 @@
     (test-error "not a registry" (as-says? "asset registry") (asset-ref '() 'k))
     (test-error "asset-set! on a non-registry" (as-says? "asset registry")
                 (asset-set! 'x 'k 1))))
+
+;; Under csi (as the suites run) the program's directory is the current
+;; one; a compiled game's is its binary's, which the guide's shipping
+;; example checks by running a static build from another directory.
+(test-group "assets: program-relative-path"
+  (import (chicken process-context))
+  (test "under csi, relative to the current directory"
+        (string-append (current-directory) "/levels/one.tmx")
+        (program-relative-path "levels/one.tmx"))
+  (test "an absolute path is kept" "/srv/one.tmx" (program-relative-path "/srv/one.tmx"))
+  (test "program-directory is the current directory under csi"
+        (current-directory) (program-directory))
+  (test-error "not a string" (as-says? "the path must be a string")
+              (program-relative-path 'levels)))
