@@ -64,3 +64,14 @@
           (length (filter-lines "platformer: no sound (Mix_OpenAudio: ALSA: " out)))
     (test-assert "and the demo ran to its end"
                  (substring-index "on-ground #t" (last-line out)))))
+
+;; A private install sets CHICKEN_INSTALL_REPOSITORY, and then
+;; `chicken-install -repository` names that directory: the launcher must
+;; still find CHICKEN's own modules (chicken.format ...).
+(test-group "demo: the launcher finds CHICKEN's own repository"
+  (let ((empty (demo-tmp "empty-repository")))
+    (create-directory empty #t)
+    (test "with CHICKEN_INSTALL_REPOSITORY naming an empty directory"
+          "getting-started: square at 150 110"
+          (last-line (demo-output (string-append "env -u CHICKEN_REPOSITORY_PATH CHICKEN_INSTALL_REPOSITORY="
+                                                 empty " bin/demo-getting-started --headless --frames 2"))))))
