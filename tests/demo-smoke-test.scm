@@ -75,3 +75,18 @@
           "getting-started: square at 150 110"
           (last-line (demo-output (string-append "env -u CHICKEN_REPOSITORY_PATH CHICKEN_INSTALL_REPOSITORY="
                                                  empty " bin/demo-getting-started --headless --frames 2"))))))
+
+;; The launcher makes the demos' art only when it is missing or older than
+;; its generator (tools/make-assets.scm), not on every run.
+(test-group "demo: assets are made only when missing or stale"
+  (import (chicken file posix))
+  (let ((tiles "../demo/assets/tiles.png") (coin "../demo/assets/coin.wav")
+        (run (lambda () (demo-output "bin/demo-getting-started --headless --frames 1"))))
+    (run)
+    (let ((before (file-modification-time tiles)))
+      (sleep 1)
+      (run)
+      (test "a second run leaves tiles.png as it was" before (file-modification-time tiles)))
+    (delete-file coin)
+    (run)
+    (test-assert "a missing coin.wav is made again" (file-exists? coin))))
