@@ -13,7 +13,7 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util srfi-197 entity tween animation xml decode tilemap scene broadphase physics sdl2 renderer input sound text assets prefabs engine
+MODULES := test util srfi-197 entity tween animation xml decode map tmx tilemap scene broadphase physics sdl2 renderer input sound text assets prefabs engine
 
 # C libraries a module binds through the FFI (passed to the linker by csc).
 LINK_xml    := -L -lexpat
@@ -60,16 +60,17 @@ $(BUILD)/downstroke.%.so: %.scm | $(BUILD)
 # What each module imports from this library (compile-time dependencies).
 $(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
-$(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.prefabs.so
-$(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
+$(BUILD)/downstroke.map.so:       $(BUILD)/downstroke.util.so
+$(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.map.so
+$(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.tmx.so
+$(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.prefabs.so
+$(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so
 $(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so
-$(BUILD)/downstroke.sound.so:     $(BUILD)/downstroke.sdl2.so
 $(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.sdl2.so
 $(BUILD)/downstroke.assets.so:    $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.prefabs.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.util.so $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.text.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
-$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so
+$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.util.so $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
+$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so
 
 # Tiled's own example maps, from Debian's tiled package (cached in tests/data).
 examples:

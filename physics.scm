@@ -18,7 +18,7 @@
    *gravity* *jump-force* *entity-ground-contact-tolerance* *entity-ground-vy-max*)
 
   (import scheme (chicken base) (chicken fixnum) (chicken format) (chicken foreign) srfi-4
-          (downstroke entity) (downstroke scene) (downstroke tilemap)
+          (downstroke entity) (downstroke scene) (downstroke map)
           (downstroke broadphase))
 
   ;;; Constants

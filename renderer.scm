@@ -117,7 +117,7 @@
 
   (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
           (downstroke sdl2) (downstroke entity) (downstroke scene)
-          (downstroke tilemap)
+          (downstroke map)
           (only (downstroke physics) entity-cell-span tunnel-risk?))
 
   ;; The rounding rule (see above): world coordinate -> whole screen pixel.

@@ -16,7 +16,7 @@
 
   (import scheme (chicken base) (chicken format) (chicken fixnum) (chicken keyword) (chicken string)
           (chicken condition)
-          (downstroke entity) (downstroke tilemap)
+          (downstroke entity) (downstroke map)
           (only (downstroke prefabs) prefabs? prefab-names instantiate-prefab))
 
   (define-record-type camera

@@ -1,0 +1,571 @@
+;;; (downstroke map): tile maps as immutable data. Pure: no C library, no
+;;; file format; (downstroke tmx) reads Tiled's files into these records,
+;;; and (downstroke tilemap) offers both under the name games import.
+;;;
+;;; A tilemap is a grid of W x H cells in one or more tile layers, each cell a
+;;; 32-bit value as Tiled writes it: the global tile id (gid) in the low 28
+;;; bits, the flip flags in the top four (bit 31 horizontal, 30 vertical,
+;;; 29 diagonal, 28 hexagonal 120-degree rotation). Layer data is a u32vector
+;;; in row-major order, so `tilemap-tile-at` is O(1). `tilemap-tile-at` answers
+;;; the flag-free gid, `tilemap-cell-at` the raw value with its flags.
+;;;
+;;; Collision asks one question of a cell, "is it solid?", and that answer is
+;;; precomputed once per map into a single byte grid merged from every
+;;; colliding tile layer (those nested in groups included), using the
+;;; flag-free gid: a cell is solid when that gid is not 0.
+;;;
+;;; Which layers collide: every tile layer, unless the layer has the property
+;;; `collides` set to #f (a bool property; the string "false" or the int 0
+;;; do not opt out). So the contract's default holds (any non-zero tile
+;;; is solid) and a decoration layer opts out with one property in Tiled.
+;;;
+;;; Infinite maps. Tiled stores an infinite map's layers as chunks at any
+;;; tile position, negative ones included. The loaded map covers the union of
+;;; all chunks of all tile layers: `tilemap-origin-col`/`-row` is the
+;;; top-left cell of that rectangle (0 and 0 for finite maps), and
+;;; `tilemap-width`/`-height` its size. Every cell accessor takes the column
+;;; and row Tiled shows, so valid columns are [origin-col, origin-col + width)
+;;; and valid rows [origin-row, origin-row + height). Cells outside are empty
+;;; (any exact integer is a cell, bignums included); a column or row that is
+;;; not an exact integer is an error, and so is an unknown layer, whether the
+;;; cell is inside the map or not.
+;;;
+;;; Representation of what a map holds (all immutable after loading):
+;;; - layers: `layer` records of kind tile, object, image or group. Offsets
+;;;   and parallax factors are the effective ones (a group's offset is added to
+;;;   its children's, its parallax multiplied), as are opacity (multiplied)
+;;;   and visibility (and-ed); tint is the layer's own.
+;;; - tilesets: `tileset` records, in firstgid order; per-tile data in `tile`
+;;;   records (properties, image, animation frames, collision shapes).
+;;; - objects: `map-object` records; shape is one of the symbols rectangle,
+;;;   ellipse, point, polygon, polyline, text, tile.
+;;; - properties: an alist (name . value) in file order. Values: string,
+;;;   exact integer (int), flonum (float), #t/#f (bool), and tagged lists for
+;;;   the rest: (color R G B A) or (color) when unset, (file "resolved/path"),
+;;;   (object ID), (class "TypeName" ((member . value) ...)), (list v ...).
+;;; - colors (background, tint, object layer colour, image transparency) are
+;;;   (color R G B A) lists too.
+(module (downstroke map)
+  (;; in-memory maps
+   make-tilemap list->tilemap tilemap?
+   tilemap-width tilemap-height tilemap-tile-width tilemap-tile-height
+   tilemap-pixel-width tilemap-pixel-height tilemap-origin-col tilemap-origin-row
+   tilemap-layers tilemap-layer tilemap-properties
+   tilemap-tile-at tilemap-cell-at tilemap-flags-at tilemap-solid? tilemap-solid-grid
+   ;; map attributes
+   tilemap-source tilemap-version tilemap-tiled-version tilemap-class
+   tilemap-orientation tilemap-render-order tilemap-infinite?
+   tilemap-hex-side-length tilemap-stagger-axis tilemap-stagger-index
+   tilemap-parallax-origin-x tilemap-parallax-origin-y tilemap-background-color
+   tilemap-tilesets tilemap-layer-tree tilemap-all-layers tilemap-object-layers
+   tilemap-image-layers tilemap-objects tilemap-tileset-for tilemap-tile-info
+   tilemap-hide-layers tilemap-object-box tilemap-object-anchor
+   ;; cells
+   cell-gid cell-flags cell-flipped-horizontally? cell-flipped-vertically?
+   cell-flipped-diagonally? cell-rotated-hex-120?
+   ;; layers
+   make-layer layer? layer-kind layer-id layer-name layer-class layer-width
+   layer-height layer-data layer-visible? layer-opacity layer-tint
+   layer-offset-x layer-offset-y layer-parallax-x layer-parallax-y
+   layer-locked? layer-properties layer-collides? layer-objects
+   layer-draw-order layer-color layer-image layer-repeat-x? layer-repeat-y?
+   layer-children
+   ;; tilesets and tiles
+   tileset? tileset-first-gid tileset-name tileset-class tileset-source
+   tileset-tile-width tileset-tile-height tileset-spacing tileset-margin
+   tileset-tile-count tileset-columns tileset-image tileset-offset-x
+   tileset-offset-y tileset-object-alignment tileset-grid tileset-properties
+   tileset-tiles tileset-tile tileset-covers?
+   tile? tile-id tile-class tile-probability tile-properties tile-image
+   tile-x tile-y tile-width tile-height tile-animation tile-shapes
+   image? image-source image-width image-height image-trans
+   ;; objects
+   map-object? object-id object-name object-class object-type object-x
+   object-y object-width object-height object-rotation object-gid
+   object-cell object-visible? object-shape object-points object-text
+   object-properties object-template
+   ;; properties
+   property-ref property-type
+   ;; tilesets described in code (sprite scenes)
+   make-sheet-tileset
+   ;; constructors for the file loaders ((downstroke tmx)); games build maps
+   ;; with make-tilemap, list->tilemap and make-layer
+   %make-layer make-image make-tile make-tileset make-map-object tileset-tile-table
+   tileset-tile-ids gid-mask)
+
+
+  (import scheme (chicken base) (chicken fixnum) (chicken format)
+          (chicken bitwise) (chicken pathname) (chicken condition)
+          (chicken string) (chicken file) srfi-4
+          (only (downstroke util) filter append-map any
+                make-hash-table hash-table-ref/default hash-table-set!
+                hash-table-exists?))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Cells: a gid and four flag bits.
+
+  (define gid-mask #x0FFFFFFF)
+  (define flag-horizontal #x80000000)
+  (define flag-vertical #x40000000)
+  (define flag-diagonal #x20000000)
+  (define flag-hex-120 #x10000000)
+
+  (define (cell-gid cell) (bitwise-and cell gid-mask))
+  (define (cell-flipped-horizontally? cell) (not (zero? (bitwise-and cell flag-horizontal))))
+  (define (cell-flipped-vertically? cell) (not (zero? (bitwise-and cell flag-vertical))))
+  (define (cell-flipped-diagonally? cell) (not (zero? (bitwise-and cell flag-diagonal))))
+  (define (cell-rotated-hex-120? cell) (not (zero? (bitwise-and cell flag-hex-120))))
+
+  ;; The flags of a cell as a list of symbols, in bit order (31 down to 28).
+  (define (cell-flags cell)
+    (append (if (cell-flipped-horizontally? cell) '(horizontal) '())
+            (if (cell-flipped-vertically? cell) '(vertical) '())
+            (if (cell-flipped-diagonally? cell) '(diagonal) '())
+            (if (cell-rotated-hex-120? cell) '(hex-120) '())))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Records
+
+  (define-record-type layer
+    (%make-layer kind id name class width height data visible? opacity tint
+                 offset-x offset-y parallax-x parallax-y locked? properties
+                 objects draw-order color image repeat-x? repeat-y? children)
+    layer?
+    (kind layer-kind)                   ; tile | object | image | group
+    (id layer-id)                       ; Tiled's layer id, or #f
+    (name layer-name)
+    (class layer-class)                 ; "" when none
+    (width layer-width)                 ; tile layers: the map's size
+    (height layer-height)
+    (data layer-data)                   ; tile layers: u32vector of cells
+    (visible? layer-visible?)           ; effective (groups and-ed)
+    (opacity layer-opacity)             ; effective (groups multiplied)
+    (tint layer-tint)                   ; own: (color R G B A) or #f
+    (offset-x layer-offset-x)           ; effective (groups added), pixels
+    (offset-y layer-offset-y)
+    (parallax-x layer-parallax-x)       ; effective (groups multiplied)
+    (parallax-y layer-parallax-y)
+    (locked? layer-locked?)
+    (properties layer-properties)
+    (objects layer-objects)             ; object layers: list of map-object
+    (draw-order layer-draw-order)       ; object layers: topdown | index
+    (color layer-color)                 ; object layers: (color ...) or #f
+    (image layer-image)                 ; image layers: image record or #f
+    (repeat-x? layer-repeat-x?)
+    (repeat-y? layer-repeat-y?)
+    (children layer-children))          ; group layers: list of layers
+
+  (define (make-layer name width height data #!key (visible? #t) (properties '())
+                      (id #f) (class "") (opacity 1) (tint #f) (offset-x 0)
+                      (offset-y 0) (parallax-x 1) (parallax-y 1) (locked? #f))
+    (unless (and (u32vector? data) (= (u32vector-length data) (* width height)))
+      (error 'make-layer
+             (sprintf "layer ~s: data must be a u32vector of ~a cells" name (* width height))))
+    (%make-layer 'tile id name class width height data visible? opacity tint
+                 offset-x offset-y parallax-x parallax-y locked? properties
+                 '() #f #f #f #f #f '()))
+
+  (define (layer-collides? layer)
+    (let ((p (assoc "collides" (layer-properties layer))))
+      (not (and p (not (cdr p))))))
+
+  (define-record-type image
+    (make-image source width height trans)
+    image?
+    (source image-source)               ; path resolved against its file, or #f
+    (width image-width)                 ; #f when not given
+    (height image-height)
+    (trans image-trans))                ; (color R G B 255) or #f
+
+  (define-record-type tile
+    (make-tile id class probability properties image x y width height animation shapes)
+    tile?
+    (id tile-id)                        ; local id within its tileset
+    (class tile-class)
+    (probability tile-probability)
+    (properties tile-properties)
+    (image tile-image)                  ; image collections: its own image
+    (x tile-x) (y tile-y)               ; sub-rectangle of the image (Tiled 1.9)
+    (width tile-width) (height tile-height)
+    (animation tile-animation)          ; list of (local-tile-id . duration-ms)
+    (shapes tile-shapes))               ; collision shapes: list of map-object
+
+  (define-record-type tileset
+    (make-tileset first-gid name class source tile-width tile-height spacing
+                  margin tile-count columns image offset-x offset-y
+                  object-alignment grid properties tiles)
+    tileset?
+    (first-gid tileset-first-gid)
+    (name tileset-name)
+    (class tileset-class)
+    (source tileset-source)             ; the .tsx path, or #f when embedded
+    (tile-width tileset-tile-width)
+    (tile-height tileset-tile-height)
+    (spacing tileset-spacing)
+    (margin tileset-margin)
+    (tile-count tileset-tile-count)     ; #f when it cannot be known
+    (columns tileset-columns)
+    (image tileset-image)               ; image record, #f for image collections
+    (offset-x tileset-offset-x)
+    (offset-y tileset-offset-y)
+    (object-alignment tileset-object-alignment)
+    (grid tileset-grid)                 ; (orientation width height) or #f
+    (properties tileset-properties)
+    (tiles tileset-tile-table))
+
+  ;; Per-tile data by local id, or #f.
+  (define (tileset-tile ts id)
+    (hash-table-ref/default (tileset-tile-table ts) id #f))
+
+  (define (tileset-tiles ts)
+    (map (lambda (id) (tileset-tile ts id)) (tileset-tile-ids ts)))
+
+  (define (tileset-tile-ids ts)
+    (hash-table-ref/default (tileset-tile-table ts) 'order '()))
+
+  ;; Whether a flag-free gid names a tile of this tileset. An image tileset
+  ;; covers tile-count ids; an image collection only the ids it lists.
+  (define (tileset-covers? ts gid)
+    (let ((local (- gid (tileset-first-gid ts))))
+      (and (>= local 0)
+           (if (tileset-image ts)
+               (let ((n (tileset-tile-count ts))) (or (not n) (< local n)))
+               (and (tileset-tile ts local) #t)))))
+
+  (define-record-type map-object
+    (make-map-object id name class x y width height rotation cell visible?
+                     shape points text properties template)
+    map-object?
+    (id object-id)
+    (name object-name)
+    (class object-class)                ; `type` before Tiled 1.9
+    (x object-x) (y object-y)
+    (width object-width) (height object-height)
+    (rotation object-rotation)          ; degrees, clockwise
+    (cell object-cell)                  ; raw gid with flags, 0 when not a tile
+    (visible? object-visible?)
+    (shape object-shape)
+    (points object-points)              ; polygon/polyline: list of (x . y)
+    (text object-text)                  ; text objects: alist, else #f
+    (properties object-properties)
+    (template object-template))         ; the .tx path, or #f
+
+  (define (object-type o) (object-class o))
+  (define (object-gid o) (cell-gid (object-cell o)))
+
+  (define-record-type tilemap
+    (%make-tilemap width height tile-width tile-height layers properties solid
+                   origin-col origin-row info tilesets layer-tree)
+    tilemap?
+    (width tilemap-width)
+    (height tilemap-height)
+    (tile-width tilemap-tile-width)
+    (tile-height tilemap-tile-height)
+    (layers tilemap-layers)             ; tile layers, groups flattened
+    (properties tilemap-properties)
+    (solid tilemap-solid-grid)
+    (origin-col tilemap-origin-col)
+    (origin-row tilemap-origin-row)
+    (info tilemap-info)                 ; alist of the map's attributes
+    (tilesets tilemap-tilesets)
+    (layer-tree tilemap-layer-tree))    ; every layer, as nested in Tiled
+
+  (define (info-ref tm key default)
+    (let ((p (assq key (tilemap-info tm)))) (if p (cdr p) default)))
+
+  (define (tilemap-source tm) (info-ref tm 'source #f))
+  (define (tilemap-version tm) (info-ref tm 'version #f))
+  (define (tilemap-tiled-version tm) (info-ref tm 'tiled-version #f))
+  (define (tilemap-class tm) (info-ref tm 'class ""))
+  (define (tilemap-orientation tm) (info-ref tm 'orientation 'orthogonal))
+  (define (tilemap-render-order tm) (info-ref tm 'render-order 'right-down))
+  (define (tilemap-infinite? tm) (info-ref tm 'infinite? #f))
+  (define (tilemap-hex-side-length tm) (info-ref tm 'hex-side-length #f))
+  (define (tilemap-stagger-axis tm) (info-ref tm 'stagger-axis #f))
+  (define (tilemap-stagger-index tm) (info-ref tm 'stagger-index #f))
+  (define (tilemap-parallax-origin-x tm) (info-ref tm 'parallax-origin-x 0))
+  (define (tilemap-parallax-origin-y tm) (info-ref tm 'parallax-origin-y 0))
+  (define (tilemap-background-color tm) (info-ref tm 'background-color #f))
+
+  ;; Every layer in document order, a group before its children.
+  (define (tilemap-all-layers tm)
+    (let walk ((layers (tilemap-layer-tree tm)))
+      (append-map (lambda (l) (cons l (walk (layer-children l)))) layers)))
+
+  (define (layers-of-kind tm kind)
+    (filter (lambda (l) (eq? (layer-kind l) kind)) (tilemap-all-layers tm)))
+  (define (tilemap-object-layers tm) (layers-of-kind tm 'object))
+  (define (tilemap-image-layers tm) (layers-of-kind tm 'image))
+  (define (tilemap-objects tm) (append-map layer-objects (tilemap-object-layers tm)))
+
+  ;; A copy of the map in which every layer satisfying (hide? layer) is
+  ;; invisible (layer-visible? #f), a group's children included. Nothing
+  ;; else changes: cells, objects, and which cells are solid (collision
+  ;; ignores visibility) stay as they were. game-load-scene! uses it to hide
+  ;; the object layers whose objects became entities, so they are drawn once.
+  (define (tilemap-hide-layers tm hide?)
+    (define renamed '())                ; (old tile layer . its copy)
+    (define (copy l visible? children)
+      (%make-layer (layer-kind l) (layer-id l) (layer-name l) (layer-class l)
+                   (layer-width l) (layer-height l) (layer-data l)
+                   visible? (layer-opacity l) (layer-tint l)
+                   (layer-offset-x l) (layer-offset-y l)
+                   (layer-parallax-x l) (layer-parallax-y l)
+                   (layer-locked? l) (layer-properties l) (layer-objects l)
+                   (layer-draw-order l) (layer-color l) (layer-image l)
+                   (layer-repeat-x? l) (layer-repeat-y? l) children))
+    ;; in-hidden?: inside a group being hidden
+    (define (walk l in-hidden?)
+      (let* ((h (or in-hidden? (and (hide? l) #t)))
+             (new (if (and (not h) (null? (layer-children l)))
+                      l
+                      (copy l (and (not h) (layer-visible? l))
+                            (map (lambda (c) (walk c h)) (layer-children l))))))
+        (when (eq? (layer-kind l) 'tile)
+          (set! renamed (cons (cons l new) renamed)))
+        new))
+    (let* ((tree (map (lambda (l) (walk l #f)) (tilemap-layer-tree tm)))
+           (layers (map (lambda (l) (let ((p (assq l renamed))) (if p (cdr p) l)))
+                        (tilemap-layers tm))))
+      (%make-tilemap (tilemap-width tm) (tilemap-height tm)
+                     (tilemap-tile-width tm) (tilemap-tile-height tm)
+                     layers (tilemap-properties tm) (tilemap-solid-grid tm)
+                     (tilemap-origin-col tm) (tilemap-origin-row tm)
+                     (tilemap-info tm) (tilemap-tilesets tm) tree)))
+
+  ;; Where a tile object's image hangs from its (x, y): the fractions of
+  ;; its width and height left of and above that point, (values ax ay).
+  ;; Tiled's default (unspecified) for orthogonal maps is bottom-left.
+  (define (tilemap-object-anchor tm object)
+    (let* ((ts (tilemap-tileset-for tm (object-cell object)))
+           (align (if ts (tileset-object-alignment ts) 'unspecified)))
+      (case align
+        ((top-left) (values 0 0)) ((top) (values 1/2 0)) ((top-right) (values 1 0))
+        ((left) (values 0 1/2)) ((center) (values 1/2 1/2)) ((right) (values 1 1/2))
+        ((bottom) (values 1/2 1)) ((bottom-right) (values 1 1))
+        (else (values 0 1)))))          ; bottom-left, unspecified
+
+  ;; The unrotated box an object covers, (values x y width height) in map
+  ;; pixels, x y its top-left corner:
+  ;;   tile objects: the tile's image placed by the anchor above, at the
+  ;;     object's size (the tile's own size when the object gives 0),
+  ;;     moved by its tileset's <tileoffset>;
+  ;;   polygons and polylines: the bounding box of their points;
+  ;;   the rest (rectangles, ellipses, text, points): x y width height as
+  ;;     written (a point is 0 x 0).
+  (define (tilemap-object-box tm object)
+    (let ((x (object-x object)) (y (object-y object))
+          (w (object-width object)) (h (object-height object)))
+      (case (object-shape object)
+        ((tile)
+         (let* ((ts (tilemap-tileset-for tm (object-cell object)))
+                (tile (and ts (tileset-tile ts (- (object-gid object) (tileset-first-gid ts)))))
+                (tw (cond ((not ts) 0)
+                          ((tileset-image ts) (tileset-tile-width ts))
+                          ((and tile (tile-width tile)))
+                          ((and tile (tile-image tile) (image-width (tile-image tile))))
+                          (else (tileset-tile-width ts))))
+                (th (cond ((not ts) 0)
+                          ((tileset-image ts) (tileset-tile-height ts))
+                          ((and tile (tile-height tile)))
+                          ((and tile (tile-image tile) (image-height (tile-image tile))))
+                          (else (tileset-tile-height ts))))
+                (w (if (zero? w) tw w))
+                (h (if (zero? h) th h)))
+           (receive (ax ay) (tilemap-object-anchor tm object)
+             (values (+ (- x (* ax w)) (if ts (tileset-offset-x ts) 0))
+                     (+ (- y (* ay h)) (if ts (tileset-offset-y ts) 0))
+                     w h))))
+        ((polygon polyline)
+         (let ((ps (object-points object)))
+           (if (null? ps)
+               (values x y 0 0)
+               (let ((x0 (apply min (map car ps))) (x1 (apply max (map car ps)))
+                     (y0 (apply min (map cdr ps))) (y1 (apply max (map cdr ps))))
+                 (values (+ x x0) (+ y y0) (- x1 x0) (- y1 y0))))))
+        ((point) (values x y 0 0))
+        (else (values x y w h)))))
+
+  ;; The tileset a gid (flags allowed) belongs to: the one with the highest
+  ;; firstgid not above it. #f for gid 0 or below every firstgid.
+  (define (tilemap-tileset-for tm gid)
+    (let ((g (cell-gid gid)))
+      (and (> g 0)
+           (let loop ((ts (tilemap-tilesets tm)) (best #f))
+             (cond ((null? ts) best)
+                   ((<= (tileset-first-gid (car ts)) g) (loop (cdr ts) (car ts)))
+                   (else best))))))
+
+  ;; The per-tile data (a tile record) of a gid, or #f.
+  (define (tilemap-tile-info tm gid)
+    (let ((ts (tilemap-tileset-for tm gid)))
+      (and ts (tileset-tile ts (- (cell-gid gid) (tileset-first-gid ts))))))
+
+  (define (solid-grid width height layers)
+    (let* ((n (* width height))
+           (grid (make-u8vector n 0)))
+      (for-each
+       (lambda (layer)
+         (when (layer-collides? layer)
+           (let ((data (layer-data layer)))
+             (do ((i 0 (fx+ i 1))) ((fx= i n))
+               (unless (fx= 0 (fxand (u32vector-ref data i) gid-mask))
+                 (u8vector-set! grid i 1))))))
+       layers)
+      grid))
+
+  (define (make-tilemap width height tile-width tile-height layers
+                        #!key (properties '()) (origin-col 0) (origin-row 0)
+                        (info '()) (tilesets '()) (layer-tree layers))
+    (for-each
+     (lambda (layer)
+       (unless (and (eq? (layer-kind layer) 'tile)
+                    (= (layer-width layer) width) (= (layer-height layer) height))
+         (error 'make-tilemap
+                (sprintf "layer ~s is ~ax~a, the map is ~ax~a"
+                         (layer-name layer) (layer-width layer) (layer-height layer)
+                         width height))))
+     layers)
+    (unless (and (fixnum? tile-width) (fx> tile-width 0)
+                 (fixnum? tile-height) (fx> tile-height 0))
+      (error 'make-tilemap "tile size must be positive integers" tile-width tile-height))
+    (%make-tilemap width height tile-width tile-height layers properties
+                   (solid-grid width height layers) origin-col origin-row
+                   info tilesets layer-tree))
+
+  ;; A one-layer map from rows of tile ids: procedural levels, tests, the REPL.
+  (define (list->tilemap rows #!key (tile-width 16) (tile-height 16) (name "tiles"))
+    (let* ((height (length rows))
+           (width (if (null? rows) 0 (length (car rows))))
+           (data (make-u32vector (* width height) 0)))
+      (let loop ((rows rows) (j 0))
+        (unless (null? rows)
+          (unless (= (length (car rows)) width)
+            (error 'list->tilemap
+                   (sprintf "row ~a has ~a tiles, row 0 has ~a" j (length (car rows)) width)))
+          (let fill ((cells (car rows)) (i 0))
+            (unless (null? cells)
+              (let ((id (car cells)))
+                (unless (and (exact-integer? id) (<= 0 id 4294967295))
+                  (error 'list->tilemap (sprintf "cell (~a, ~a) is not a tile id" i j) id))
+                (u32vector-set! data (+ (* j width) i) id))
+              (fill (cdr cells) (+ i 1))))
+          (loop (cdr rows) (+ j 1))))
+      (make-tilemap width height tile-width tile-height
+                    (list (make-layer name width height data)))))
+
+  (define (tilemap-pixel-width tm) (* (tilemap-width tm) (tilemap-tile-width tm)))
+  (define (tilemap-pixel-height tm) (* (tilemap-height tm) (tilemap-tile-height tm)))
+
+  ;; A tile layer by index (0 = first) or by name.
+  (define (tilemap-layer tm which)
+    (let loop ((layers (tilemap-layers tm)) (i 0))
+      (cond ((null? layers) (error 'tilemap-layer "no such layer" which))
+            ((if (string? which)
+                 (equal? which (layer-name (car layers)))
+                 (eqv? which i))
+             (car layers))
+            (else (loop (cdr layers) (+ i 1))))))
+
+  ;; A coordinate that is not an exact integer is an error naming it; an
+  ;; exact integer of any size is a cell, inside the map or not.
+  (define (check-coordinate who name x)
+    (unless (exact-integer? x)
+      (error who (sprintf "~a: expected an exact integer, got ~s" name x))))
+
+  ;; The index of a cell in the layer vectors, or #f outside the map.
+  ;; Fixnums take the fast path; anything else is checked (bignums are
+  ;; outside every map, the rest an error).
+  (define (cell-index who tm col row)
+    (if (and (fixnum? col) (fixnum? row))
+        (let ((c (- col (tilemap-origin-col tm)))
+              (r (- row (tilemap-origin-row tm))))
+          (and (fixnum? c) (fixnum? r)
+               (fx>= c 0) (fx< c (tilemap-width tm))
+               (fx>= r 0) (fx< r (tilemap-height tm))
+               (fx+ (fx* r (tilemap-width tm)) c)))
+        (begin (check-coordinate who "col" col)
+               (check-coordinate who "row" row)
+               #f)))
+
+  ;; The cell data of layer `which`, looked up before the cell so that an
+  ;; unknown layer is an error wherever the cell is. Layer 0 (the default)
+  ;; is the head of the list.
+  (define (layer-cells tm which)
+    (let ((layers (tilemap-layers tm)))
+      (layer-data (if (and (eqv? which 0) (pair? layers))
+                      (car layers)
+                      (tilemap-layer tm which)))))
+
+  (define (cell-ref who tm col row which)
+    (let* ((i (cell-index who tm col row))
+           (data (layer-cells tm which)))
+      (if i (u32vector-ref data i) 0)))
+
+  ;; The raw cell (gid with flip flags); 0 when empty or outside the map.
+  (define (tilemap-cell-at tm col row #!optional (which 0))
+    (cell-ref 'tilemap-cell-at tm col row which))
+
+  ;; The tile id (flag-free gid) at a cell; 0 when empty or outside the map.
+  (define (tilemap-tile-at tm col row #!optional (which 0))
+    (fxand (cell-ref 'tilemap-tile-at tm col row which) gid-mask))
+
+  ;; The flip flags of a cell, as cell-flags gives them.
+  (define (tilemap-flags-at tm col row #!optional (which 0))
+    (cell-flags (cell-ref 'tilemap-flags-at tm col row which)))
+
+  ;; Whether any colliding layer has a tile at the cell; outside is empty.
+  (define (tilemap-solid? tm col row)
+    (let ((i (cell-index 'tilemap-solid? tm col row)))
+      (and i (fx= 1 (u8vector-ref (tilemap-solid-grid tm) i)))))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Properties
+
+  (define (property-ref props name #!optional default)
+    (let ((p (assoc name props))) (if p (cdr p) default)))
+
+  ;; The Tiled type of a property value.
+  (define (property-type v)
+    (cond ((string? v) 'string)
+          ((boolean? v) 'bool)
+          ((exact-integer? v) 'int)
+          ((number? v) 'float)
+          ((and (pair? v) (memq (car v) '(color file object class list))) (car v))
+          (else #f)))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Tilesets without a map file
+
+  ;; A sprite sheet described in code: an image cut into a grid of tiles of
+  ;; tile-width x tile-height, columns to a row, read left to right and top
+  ;; to bottom (what Tiled calls a tileset based on one image). The image
+  ;; must exist; it is not decoded here (the pure core never touches SDL).
+  (define (make-sheet-tileset image #!key tile-width tile-height columns
+                              (tile-count #f) (spacing 0) (margin 0)
+                              (first-gid 1) (name ""))
+    (define (natural key v minimum)
+      (check-integer 'make-sheet-tileset (sprintf "sheet ~s: " image) key v minimum))
+    (unless (string? image)
+      (error 'make-sheet-tileset "the image path must be a string" image))
+    (natural "tile-width:" tile-width 1)
+    (natural "tile-height:" tile-height 1)
+    (natural "columns:" columns 1)
+    (natural "spacing:" spacing 0)
+    (natural "margin:" margin 0)
+    (when tile-count (natural "tile-count:" tile-count 0))
+    (natural "first-gid:" first-gid 1)
+    (unless (regular-file? image)
+      (error 'make-sheet-tileset (sprintf "sheet ~s: no such image file" image)))
+    (let ((tiles (make-hash-table eqv?)))
+      (hash-table-set! tiles 'order '())
+      (make-tileset first-gid name "" #f tile-width tile-height spacing margin
+                    tile-count columns (make-image (normalize-pathname image) #f #f #f)
+                    0 0 'unspecified #f '() tiles)))
+
+  (define (regular-file? path) (and (file-exists? path) (not (directory-exists? path))))
+
+  (define (check-integer who prefix key v minimum)
+    (unless (and (exact-integer? v) (>= v minimum))
+      (error who (sprintf "~a~a is ~s, expected an integer of at least ~a" prefix key v minimum)))))
+
