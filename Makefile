@@ -13,7 +13,7 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util srfi-197 entity tween animation xml decode map tmx tilemap scene broadphase physics sdl2 renderer input sound text assets prefabs engine
+MODULES := test util srfi-197 entity tween animation xml decode map tmx tilemap scene broadphase physics pipeline sdl2 renderer input sound text assets prefabs engine
 
 # C libraries a module binds through the FFI (passed to the linker by csc).
 LINK_xml    := -L -lexpat
@@ -54,10 +54,11 @@ $(BUILD):
 # -J writes downstroke.foo.import.scm beside the library; it is compiled too,
 # so `import` loads native code rather than interpreting the import list.
 $(BUILD)/downstroke.%.so: %.scm | $(BUILD)
-	cd $(BUILD) && $(CSC) -s $(CSC_FLAGS) $(LINK_$*) -J ../$< -o downstroke.$*.so
+	cd $(BUILD) && $(CSC) -s $(CSC_FLAGS) -C -I$(CURDIR) $(LINK_$*) -J ../$< -o downstroke.$*.so
 	cd $(BUILD) && $(CSC) -s $(CSC_FLAGS) downstroke.$*.import.scm -o downstroke.$*.import.so
 
-# What each module imports from this library (compile-time dependencies).
+# What each module imports from this library (compile-time dependencies);
+# tests/layout-test.scm checks these lines against the imports and the .egg.
 $(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.map.so:       $(BUILD)/downstroke.util.so
@@ -65,12 +66,16 @@ $(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.xml.so $(BUILD)/downstroke
 $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.tmx.so
 $(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.prefabs.so
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so
+$(BUILD)/downstroke.pipeline.so:  $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
 $(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so
 $(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.sdl2.so
 $(BUILD)/downstroke.assets.so:    $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.prefabs.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.util.so $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
+$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.util.so $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.pipeline.so
 $(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so
+
+# C files a module includes (its foreign-declare), found through -I.
+$(BUILD)/downstroke.pipeline.so: needs.c
 
 # Tiled's own example maps, from Debian's tiled package (cached in tests/data).
 examples:

@@ -14,7 +14,8 @@
    game-scene game-scene-set! game-input game-input-set!
    game-renderer game-renderer-set! game-window game-window-set!
    game-frame game-asset game-asset-set!
-   engine-pipeline default-engine-update run-engine-update!
+   engine-pipeline contract-pipeline   ; from (downstroke pipeline), for games
+   default-engine-update run-engine-update!
    game-start! game-step!
    game-run! game-recording game-surface game-load-scene! game-load-tilesets! game-textures
    game-add-state! game-state-set! game-current-state game-states)
@@ -22,8 +23,7 @@
   (import scheme (chicken base) (chicken format) (chicken process-context) (chicken fixnum)
           (chicken foreign) (chicken condition) (chicken file) (chicken pathname)
           (downstroke entity) (downstroke scene) (downstroke physics)
-          (downstroke tween) (downstroke animation) (downstroke srfi-197)
-          (downstroke assets)
+          (downstroke pipeline) (downstroke assets)
           (downstroke sdl2) (downstroke renderer) (downstroke input)
           (downstroke tilemap)
           (only (downstroke util) filter every append-map delete-duplicates))
@@ -94,115 +94,6 @@
 
   (define (game-asset-set! game key value)
     (asset-set! (game-assets game) key value))
-
-  ;;; The default pipeline runs only the steps some entity of the scene
-  ;;; needs: one walk over each entity finds out which (`pipeline-needs`),
-  ;;; and a step no entity needs is not run at all. Skipping such a step
-  ;;; changes nothing, because its guard would have left every entity as
-  ;;; it was; tests compare this pipeline with every step run in turn.
-
-  ;; Bits of what a list of entities needs.
-  (define need-tweens 1)        ; an entity has a #:tween
-  (define need-ground 2)        ; an entity has #:gravity?
-  (define need-pairs 4)         ; two or more entities have #:solid?
-  (define need-groups 8)        ; an entity has a #:group-id
-  (define need-animation 16)    ; an entity has #:animations
-  (define need-support 32)      ; an entity has #:solid? (it may hold others up)
-
-  ;; The walk below, in C: it reads every pair of every entity each frame,
-  ;; which in Scheme was a twentieth of a crowd scene's time. Bit i is set
-  ;; when some entity holds need-keys[i] with a true value, except for
-  ;; #:solid? (bit 2), whose entities are counted in bits 8-9 (0, 1, 2 or
-  ;; more). -1 when an entity is not a list of pairs: the Scheme walk then
-  ;; raises the error.
-  (foreign-declare #<<EOF
-static C_word ds_pipeline_needs(C_word entities, C_word keys) {
-  C_word es, ps, p, k, bits = 0, solids = 0, i;
-  int solid;
-  for (es = entities; es != C_SCHEME_END_OF_LIST; es = C_block_item(es, 1)) {
-    if (!C_truep(C_i_pairp(es))) return C_fix(-1);
-    solid = 0;
-    for (ps = C_block_item(es, 0); ps != C_SCHEME_END_OF_LIST; ps = C_block_item(ps, 1)) {
-      if (!C_truep(C_i_pairp(ps))) return C_fix(-1);
-      p = C_block_item(ps, 0);
-      if (!C_truep(C_i_pairp(p))) return C_fix(-1);
-      if (C_block_item(p, 1) == C_SCHEME_FALSE) continue;
-      k = C_block_item(p, 0);
-      for (i = 0; i < 5; i++)
-        if (k == C_block_item(keys, i)) {
-          if (i == 2) solid = 1; else bits |= 1 << i;
-          break;
-        }
-    }
-    if (solid && solids < 2) solids++;
-  }
-  return C_fix(bits | (solids << 8));
-}
-EOF
-)
-  (define need-keys (vector #:tween #:gravity? #:solid? #:group-id #:animations))
-  (define c-needs (foreign-lambda scheme-object "ds_pipeline_needs" scheme-object scheme-object))
-
-  (define (pipeline-needs entities)
-    (let ((c (c-needs entities need-keys)))
-      (if (fx< c 0)
-          (scheme-pipeline-needs entities)
-          (fxior (fxand c 27)          ; tweens, ground, groups, animation
-                 (case (fxshr c 8)
-                   ((0) 0)
-                   ((1) need-support)
-                   (else (fxior need-pairs need-support)))))))
-
-  (define (scheme-pipeline-needs entities)
-    (let next ((es entities) (bits 0) (solids 0))
-      (if (null? es)
-          (fxior bits (cond ((fx>= solids 2) (fxior need-pairs need-support))
-                            ((fx= solids 1) need-support)
-                            (else 0)))
-          (let walk ((ps (car es)) (bits bits) (solid? #f))
-            (if (null? ps)
-                (next (cdr es) bits (if solid? (fx+ solids 1) solids))
-                (let* ((p (car ps)) (k (car p)))
-                  (cond ((not (cdr p)) (walk (cdr ps) bits solid?))
-                        ((eq? k #:gravity?) (walk (cdr ps) (fxior bits need-ground) solid?))
-                        ((eq? k #:solid?) (walk (cdr ps) bits #t))
-                        ((eq? k #:tween) (walk (cdr ps) (fxior bits need-tweens) solid?))
-                        ((eq? k #:group-id) (walk (cdr ps) (fxior bits need-groups) solid?))
-                        ((eq? k #:animations) (walk (cdr ps) (fxior bits need-animation) solid?))
-                        (else (walk (cdr ps) bits solid?)))))))))
-
-  (define (needs? bits need) (not (fx= 0 (fxand bits need))))
-
-  ;; The contract's pipeline, as a pure function of a scene.
-  ;; Steps 1-7 read no other entity, so they run back to back per entity
-  ;; (one list built instead of seven): tweens, then the motion pass
-  ;; (steps 2-7 in one walk, see physics.scm). Ground detection sees every
-  ;; entity after its tile passes; then the bulk steps; then animation. A
-  ;; tween's on-complete may change an entity in any way, so after tweens
-  ;; the needs are read again. Without tweens and without solid entities,
-  ;; ground detection looks only at the entity itself and the map, so it
-  ;; joins the motion pass.
-  (define (engine-pipeline scene dt)
-    (let* ((before (pipeline-needs (scene-entities scene)))
-           (tweens? (needs? before need-tweens))
-           (ground-in-motion? (and (not tweens?) (needs? before need-ground)
-                                   (not (needs? before need-support))))
-           (move (motion-pass scene dt ground-in-motion?))
-           (scene (scene-map-entities scene (if tweens?
-                                                (lambda (s e) (move (step-tweens s e dt)))
-                                                (lambda (s e) (move e)))))
-           (needs (if tweens? (pipeline-needs (scene-entities scene)) before)))
-      (define (when-needed need step scene) (if (needs? needs need) (step scene) scene))
-      (define (ground-pass scene)
-        (if ground-in-motion?
-            scene
-            (when-needed need-ground (cut scene-map-entities <> (lambda (s e) (detect-on-solid s e dt))) scene)))
-      (chain scene
-             (ground-pass _)
-             (when-needed need-pairs (cut scene-transform-entities <> resolve-entity-collisions) _)
-             (when-needed need-groups (cut scene-transform-entities <> sync-groups) _)
-             (when-needed need-animation
-                          (cut scene-map-entities <> (lambda (s e) (apply-animation s e dt))) _))))
 
   (define (default-engine-update game dt)
     (let ((scene (game-scene game)))

@@ -8,7 +8,7 @@
         (chicken string) (chicken sort) (chicken gc) (chicken io) (chicken condition)
         (only (chicken file) directory-exists?) (only (chicken pathname) pathname-directory)
         (downstroke entity) (downstroke scene) (downstroke tilemap)
-        (downstroke physics) (downstroke engine) (downstroke tween) (downstroke animation))
+        (downstroke physics) (downstroke engine) (downstroke pipeline) (downstroke tween) (downstroke animation))
 
 ;;; The generator of the spec: s := (1103515245 s + 12345) mod 2^31.
 (define seed 0)

@@ -4,7 +4,7 @@
 (import scheme (chicken base) (chicken string)
         (downstroke test) (downstroke entity) (downstroke tilemap)
         (downstroke scene) (downstroke physics) (downstroke tween) (downstroke animation)
-        (downstroke engine) (downstroke srfi-197))
+        (downstroke engine) (downstroke pipeline) (downstroke srfi-197))
 
 (define (ent . plist) (plist->entity plist))
 (define (repeat n x) (if (= n 0) '() (cons x (repeat (- n 1) x))))

@@ -4,7 +4,7 @@
 
 (import scheme (chicken base) (chicken gc) (chicken string) (chicken format)
         (downstroke test) (downstroke entity) (downstroke tilemap)
-        (downstroke scene) (downstroke physics) (downstroke engine))
+        (downstroke scene) (downstroke physics) (downstroke engine) (downstroke pipeline))
 
 (define (ex-ent . plist) (plist->entity plist))
 

@@ -9,11 +9,14 @@
 
 (define (filter-map* f ls)
   (if (null? ls) '() (let ((v (f (car ls)))) (if v (cons v (filter-map* f (cdr ls))) (filter-map* f (cdr ls))))))
+(define (filter-words ok? ls)
+  (cond ((null? ls) '()) ((ok? (car ls)) (cons (car ls) (filter-words ok? (cdr ls)))) (else (filter-words ok? (cdr ls)))))
 (define (find* ok? ls) (cond ((null? ls) #f) ((ok? (car ls)) (car ls)) (else (find* ok? (cdr ls)))))
 (define (ly-make-deps name)
   (let ((l (find* (lambda (l) (string-prefix? (sprintf "$(BUILD)/downstroke.~a.so:" name) l)) ly-make-lines)))
     (if l
-        (sort (map (lambda (w) (substring w 20 (- (string-length w) 3))) (cdr (string-split l)))
+        (sort (map (lambda (w) (substring w 20 (- (string-length w) 3)))
+                   (filter-words (lambda (w) (string-prefix? "$(BUILD)/downstroke." w)) (cdr (string-split l))))
               string<?)
         '())))
 (define (delete* x ls) (cond ((null? ls) '()) ((equal? x (car ls)) (delete* x (cdr ls))) (else (cons (car ls) (delete* x (cdr ls))))))

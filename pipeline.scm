@@ -1,0 +1,130 @@
+;;; (downstroke pipeline): the contract's per-frame pipeline, twice.
+;;;
+;;; contract-pipeline is the contract's list of steps as library code: each
+;;; step (a define-pipeline step, its guard and skip symbol in front) over
+;;; every entity, in the contract's order. It is the reference, and where a
+;;; custom engine-update starts: copy its body and move a step.
+;;;
+;;; engine-pipeline is what the engine runs (default-engine-update): the
+;;; same result from the same steps' rules, fast. It is the one fenced fast
+;;; path: it skips steps no entity needs, runs steps 2-7 as one pass
+;;; (physics' motion-pass, with its C kernel for small fixnums), and folds
+;;; tile ground detection into that pass when its precondition holds (see
+;;; ground-joins-motion? below). tests/pipeline-test.scm runs both on random
+;;; scenes, frame after frame, and compares every entity.
+
+(module (downstroke pipeline)
+  (contract-pipeline engine-pipeline)
+
+  (import scheme (chicken base) (chicken fixnum) (chicken foreign)
+          (downstroke scene) (downstroke physics) (downstroke tween)
+          (downstroke animation) (downstroke srfi-197))
+
+  ;; The contract's pipeline (its section 2 and 3.4), one step after the
+  ;; other over every entity of the scene.
+  (define (contract-pipeline scene dt)
+    (chain scene
+      (scene-map-entities _ (cut step-tweens               <> <> dt))
+      (scene-map-entities _ (cut apply-acceleration        <> <> dt))
+      (scene-map-entities _ (cut apply-gravity             <> <> dt))
+      (scene-map-entities _ (cut apply-velocity-x          <> <> dt))
+      (scene-map-entities _ (cut resolve-tile-collisions-x <> <> dt))
+      (scene-map-entities _ (cut apply-velocity-y          <> <> dt))
+      (scene-map-entities _ (cut resolve-tile-collisions-y <> <> dt))
+      (scene-map-entities _ (cut detect-on-solid           <> <> dt))
+      (scene-transform-entities _ resolve-entity-collisions)
+      (scene-transform-entities _ sync-groups)
+      (scene-map-entities _ (cut apply-animation           <> <> dt))))
+
+  ;;; The default pipeline runs only the steps some entity of the scene
+  ;;; needs: one walk over each entity finds out which (`pipeline-needs`),
+  ;;; and a step no entity needs is not run at all. Skipping such a step
+  ;;; changes nothing, because its guard would have left every entity as
+  ;;; it was; tests compare this pipeline with every step run in turn.
+
+  ;; Bits of what a list of entities needs.
+  (define need-tweens 1)        ; an entity has a #:tween
+  (define need-ground 2)        ; an entity has #:gravity?
+  (define need-pairs 4)         ; two or more entities have #:solid?
+  (define need-groups 8)        ; an entity has a #:group-id
+  (define need-animation 16)    ; an entity has #:animations
+  (define need-support 32)      ; an entity has #:solid? (it may hold others up)
+
+  ;; The walk below, in C: it reads every pair of every entity each frame,
+  ;; which in Scheme was a twentieth of a crowd scene's time. Bit i is set
+  ;; when some entity holds need-keys[i] with a true value, except for
+  ;; #:solid? (bit 2), whose entities are counted in bits 8-9 (0, 1, 2 or
+  ;; more). -1 when an entity is not a list of pairs: the Scheme walk then
+  ;; raises the error.
+  (foreign-declare "#include \"needs.c\"")
+  (define need-keys (vector #:tween #:gravity? #:solid? #:group-id #:animations))
+  (define c-needs (foreign-lambda scheme-object "ds_pipeline_needs" scheme-object scheme-object))
+
+  (define (pipeline-needs entities)
+    (let ((c (c-needs entities need-keys)))
+      (if (fx< c 0)
+          (scheme-pipeline-needs entities)
+          (fxior (fxand c (fxior (fxior need-tweens need-ground) (fxior need-groups need-animation)))
+                 (case (fxshr c 8)
+                   ((0) 0)
+                   ((1) need-support)
+                   (else (fxior need-pairs need-support)))))))
+
+  (define (scheme-pipeline-needs entities)
+    (let next ((es entities) (bits 0) (solids 0))
+      (if (null? es)
+          (fxior bits (cond ((fx>= solids 2) (fxior need-pairs need-support))
+                            ((fx= solids 1) need-support)
+                            (else 0)))
+          (let walk ((ps (car es)) (bits bits) (solid? #f))
+            (if (null? ps)
+                (next (cdr es) bits (if solid? (fx+ solids 1) solids))
+                (let* ((p (car ps)) (k (car p)))
+                  (cond ((not (cdr p)) (walk (cdr ps) bits solid?))
+                        ((eq? k #:gravity?) (walk (cdr ps) (fxior bits need-ground) solid?))
+                        ((eq? k #:solid?) (walk (cdr ps) bits #t))
+                        ((eq? k #:tween) (walk (cdr ps) (fxior bits need-tweens) solid?))
+                        ((eq? k #:group-id) (walk (cdr ps) (fxior bits need-groups) solid?))
+                        ((eq? k #:animations) (walk (cdr ps) (fxior bits need-animation) solid?))
+                        (else (walk (cdr ps) bits solid?)))))))))
+
+  (define (needs? bits need) (not (fx= 0 (fxand bits need))))
+
+  ;; The contract's pipeline, as a pure function of a scene.
+  ;; Steps 1-7 read no other entity, so they run back to back per entity
+  ;; (one list built instead of seven): tweens, then the motion pass
+  ;; (steps 2-7 in one walk, see physics.scm). Ground detection sees every
+  ;; entity after its tile passes; then the bulk steps; then animation. A
+  ;; tween's on-complete may change an entity in any way, so after tweens
+  ;; the needs are read again. Without tweens and without solid entities,
+  ;; ground detection looks only at the entity itself and the map, so it
+  ;; joins the motion pass.
+  (define (engine-pipeline scene dt)
+    (let* ((before (pipeline-needs (scene-entities scene)))
+           (tweens? (needs? before need-tweens))
+           (ground-in-motion? (ground-joins-motion? before))
+           (move (motion-pass scene dt ground-in-motion?))
+           (scene (scene-map-entities scene (if tweens?
+                                                (lambda (s e) (move (step-tweens s e dt)))
+                                                (lambda (s e) (move e)))))
+           (needs (if tweens? (pipeline-needs (scene-entities scene)) before)))
+      (define (when-needed need step scene) (if (needs? needs need) (step scene) scene))
+      (define (ground-pass scene)
+        (if ground-in-motion?
+            scene
+            (when-needed need-ground (cut scene-map-entities <> (lambda (s e) (detect-on-solid s e dt))) scene)))
+      (chain scene
+             (ground-pass _)
+             (when-needed need-pairs (cut scene-transform-entities <> resolve-entity-collisions) _)
+             (when-needed need-groups (cut scene-transform-entities <> sync-groups) _)
+             (when-needed need-animation
+                          (cut scene-map-entities <> (lambda (s e) (apply-animation s e dt))) _))))
+
+  ;; Tile ground detection may join the motion pass (one walk instead of
+  ;; two) only when it reads nothing but the entity itself and the map:
+  ;; with no solid entity, entity ground has no supporter; with no tween,
+  ;; no on-complete can change another entity between the two passes.
+  (define (ground-joins-motion? needs)
+    (and (needs? needs need-ground)
+         (not (needs? needs need-tweens))
+         (not (needs? needs need-support)))))
