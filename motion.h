@@ -1,0 +1,25 @@
+/* The motion kernel's interface with physics.scm: the flags it is given
+   for an entity and the keys it answers to write. physics.scm reads every
+   value below by name (define-foreign-variable), so the two sides cannot
+   drift apart. */
+#ifndef DS_MOTION_H
+#define DS_MOTION_H
+
+/* what the scene and the entity hold */
+enum {
+  DS_HAS_MAP = 1,       /* the scene has a map */
+  DS_GRAVITY = 2,       /* #:gravity? is true */
+  DS_SWEPT = 4,         /* swept collision mode */
+  DS_GROUND = 8,        /* ground detection joins the pass */
+  DS_HAS_X = 16, DS_HAS_Y = 32, DS_HAS_VX = 64, DS_HAS_VY = 128,
+  DS_HAS_AY = 256, DS_HAS_ON = 512,   /* the key is present */
+  DS_NOT_HERE = 1024    /* an unknown #:collision-mode: not for the kernel */
+};
+
+/* the keys to write; their new values are out[0] .. out[5] in this order */
+enum {
+  DS_WRITE_X = 1, DS_WRITE_Y = 2, DS_WRITE_VX = 4, DS_WRITE_VY = 8,
+  DS_WRITE_AY = 16, DS_WRITE_ON = 32
+};
+
+#endif
