@@ -1,4 +1,7 @@
-;;; (downstroke engine): the game record and the per-frame sequence.
+;;; (downstroke engine): what a game imports to run: the frame loop
+;;; (game-start!, game-step!, game-run!) and the engine update, plus, under
+;;; the same name, the game record of (downstroke game), the level loader
+;;; of (downstroke level) and the pipelines of (downstroke pipeline).
 ;;;
 ;;; `make-game` only builds a record: no SDL call is made until the game
 ;;; shell opens a window, so the pipeline and the hooks run in csi with no
@@ -14,7 +17,8 @@
    game-scene game-scene-set! game-input game-input-set!
    game-renderer game-renderer-set! game-window game-window-set!
    game-frame game-asset game-asset-set!
-   engine-pipeline contract-pipeline   ; from (downstroke pipeline), for games
+   ;; from (downstroke pipeline) and (downstroke level), for games
+   engine-pipeline contract-pipeline
    default-engine-update run-engine-update!
    game-start! game-step!
    game-run! game-recording game-surface game-load-scene! game-load-tilesets! game-textures
@@ -22,78 +26,8 @@
 
   (import scheme (chicken base) (chicken format) (chicken process-context) (chicken fixnum)
           (chicken foreign) (chicken condition) (chicken file) (chicken pathname)
-          (downstroke entity) (downstroke scene) (downstroke physics)
-          (downstroke pipeline) (downstroke assets)
-          (downstroke sdl2) (downstroke renderer) (downstroke input)
-          (downstroke tilemap)
-          (only (downstroke util) filter every append-map delete-duplicates))
-
-  (define-record-type game
-    (%make-game title width height scale frame-delay input-config
-                preload create update render debug? headless?
-                scene input renderer window frame assets
-                surface states current-state recording textures)
-    game?
-    (title game-title)
-    (width game-width)
-    (height game-height)
-    (scale game-scale)
-    (frame-delay game-frame-delay)
-    (input-config game-input-config)
-    (preload game-preload-hook)
-    (create game-create-hook)
-    (update game-update-hook)
-    (render game-render-hook)
-    (debug? game-debug?)
-    (headless? game-headless?)
-    (scene game-scene game-scene-set!)
-    (input game-input game-input-set!)
-    (renderer game-renderer game-renderer-set!)
-    (window game-window game-window-set!)
-    (frame game-frame game-frame-set!)
-    (assets game-assets)
-    (surface game-surface game-surface-set!)
-    (states game-states game-states-set!)
-    (current-state game-current-state game-current-state-set!)
-    (recording game-recording game-recording-set!)
-    (textures game-textures game-textures-set!))
-
-  (define (check what ok? value)
-    (unless (ok? value)
-      (error 'make-game (sprintf "~a: bad value ~s" what value)))
-    value)
-
-  (define (positive-integer? v) (and (exact-integer? v) (positive? v)))
-  (define (hook? v) (or (not v) (procedure? v)))
-
-  ;; width x height is the logical resolution the game draws at; the window
-  ;; is `scale` times larger on each axis. input-config #f stands for the
-  ;; input module's default configuration.
-  (define (make-game #!key (title "Downstroke Game") (width 640) (height 480)
-                     (scale 1) (frame-delay 16) (input-config #f)
-                     (preload #f) (create #f) (update #f) (render #f)
-                     (debug? #f) (headless? #f))
-    (%make-game (check "title:" string? title)
-                (check "width:" positive-integer? width)
-                (check "height:" positive-integer? height)
-                (check "scale:" positive-integer? scale)
-                (check "frame-delay:" positive-integer? frame-delay)
-                input-config
-                (check "preload:" hook? preload)
-                (check "create:" hook? create)
-                (check "update:" hook? update)
-                (check "render:" hook? render)
-                debug? headless?
-                #f #f #f #f 0 (make-asset-registry) #f '() #f #f '()))
-
-  ;; The game's assets live in an asset registry: (game-asset game key
-  ;; [default]) is asset-ref on it, so a missing key without a default is an
-  ;; error naming the key.
-  (define (game-asset game key . default)
-    (apply asset-ref (game-assets game) key default))
-
-  (define (game-asset-set! game key value)
-    (asset-set! (game-assets game) key value))
+          (downstroke game) (downstroke level) (downstroke pipeline)
+          (downstroke scene) (downstroke sdl2) (downstroke renderer) (downstroke input))
 
   (define (default-engine-update game dt)
     (let ((scene (game-scene game)))
@@ -130,58 +64,6 @@
         (game-scene-set! game (scene-follow-camera scene (game-width game)
                                                    (game-height game)))))
     (game-frame-set! game (+ (game-frame game) 1)))
-
-  ;;; ------------------------------------------------------------------
-  ;;; Named game states (title, play, pause ...).
-  ;;;
-  ;;; (game-add-state! game name #!key update render enter) registers a
-  ;;; state (adding a name again replaces it). (game-state-set! game name)
-  ;;; makes it the active state and calls its enter: hook as (enter game);
-  ;;; (game-state-set! game #f) goes back to the game's own hooks. While a
-  ;;; state is active its update: (game dt) and render: (game) hooks are
-  ;;; used INSTEAD of the game's update: and render: (a state without one
-  ;;; runs none); the scene's engine update and the camera follow still run.
-
-  (define-record-type game-state
-    (make-game-state update render enter)
-    game-state?
-    (update game-state-update)
-    (render game-state-render)
-    (enter game-state-enter))
-
-  (define (game-add-state! game name #!key (update #f) (render #f) (enter #f))
-    (for-each (lambda (what h)
-                (unless (hook? h)
-                  (error 'game-add-state! (sprintf "~a must be a procedure or #f" what) h)))
-              '("update:" "render:" "enter:") (list update render enter))
-    (game-states-set! game (cons (cons name (make-game-state update render enter))
-                                 (let loop ((ss (game-states game)))
-                                   (cond ((null? ss) '())
-                                         ((equal? (caar ss) name) (cdr ss))
-                                         (else (cons (car ss) (loop (cdr ss))))))))
-    (void))
-
-  (define (game-state-set! game name)
-    (if (not name)
-        (game-current-state-set! game #f)
-        (let ((p (assoc name (game-states game))))
-          (unless p (error 'game-state-set! (sprintf "no game state named ~s" name)))
-          (game-current-state-set! game name)
-          (let ((enter (game-state-enter (cdr p))))
-            (when enter (enter game)))))
-    (void))
-
-  (define (active-state game)
-    (let ((name (game-current-state game)))
-      (and name (let ((p (assoc name (game-states game)))) (and p (cdr p))))))
-
-  (define (active-update-hook game)
-    (let ((st (active-state game)))
-      (if st (game-state-update st) (game-update-hook game))))
-
-  (define (active-render-hook game)
-    (let ((st (active-state game)))
-      (if st (game-state-render st) (game-render-hook game))))
 
   ;;; ------------------------------------------------------------------
   ;;; The game shell.
@@ -388,131 +270,4 @@
            (when wi (destroy-window! wi))
            (when s (free-surface! s)))
          (when (and owns-sdl (sdl-initialized?)) (quit!))))
-      (if record (game-recording game) ran)))
-
-;;; ------------------------------------------------------------------
-  ;;; (game-load-scene! game tmx-path #!key entities background camera
-  ;;;                   camera-target engine-update objects->entities prefabs)
-  ;;;
-  ;;; Loads the TMX map (load-tilemap), a texture with the game's renderer
-  ;;; for every tileset image (and every tile image of image-collection
-  ;;; tilesets) and every image layer's image, and makes a scene of them
-  ;;; the game's scene, which it also returns. The scene's tileset-texture
-  ;;; is the first tileset's texture (entity sprites); every texture is in
-  ;;; game-textures, which the frame loop passes to render-scene!. It needs
-  ;;; the renderer, so it is called from a hook during game-run! (create:
-  ;;; is the usual place). Loading another scene destroys the previous
-  ;;; scene's textures (each is freed once); the rest are freed when
-  ;;; game-run! ends.
-  ;;;
-  ;;; Map objects become entities only when asked (existing callers, which
-  ;;; pass their entities with entities:, see no change):
-  ;;;   objects->entities: #t converts the objects of every object layer,
-  ;;;     a list of layer names those layers' only, a predicate on layer
-  ;;;     records the layers it accepts; #f none. Default: #f, or #t when
-  ;;;     prefabs: is given.
-  ;;;   prefabs: a collection from load-prefabs: an object whose type (class)
-  ;;;     names a prefab is instantiated from it.
-  ;;; The conversion is (downstroke scene)'s tilemap-objects->entities (see
-  ;;; there for the keys an object gives). The scene's entities are the
-  ;;; map's, in file order, followed by entities:, so the caller's (a
-  ;;; player, say) draw on top. The object layers converted are hidden in
-  ;;; the scene's map (tilemap-hide-layers: their objects are still listed
-  ;;; by tilemap-objects), so a tile object is drawn once, as its entity.
-  ;;;
-  ;;; Nothing is changed before the map has loaded, is known to be
-  ;;; orthogonal (another orientation is an error naming the file), its
-  ;;; objects are converted and every texture is loaded; a texture that
-  ;;; fails to load frees the ones loaded before it.
-
-  (define (free-textures! game)
-    (for-each (lambda (p) (destroy-texture! (cdr p))) (game-textures game))
-    (game-textures-set! game '()))
-
-  ;; Every image the map draws: tileset images, tile images of image
-  ;; collections, image layers' images; each path once, in that order.
-  (define (tilemap-image-paths tm)
-    (distinct-paths
-     (append (tileset-image-paths (tilemap-tilesets tm))
-             (map (lambda (l) (and (layer-image l) (image-source (layer-image l))))
-                  (tilemap-image-layers tm)))))
-
-  ;; A tileset's image, or its tiles' images for an image collection (#f
-  ;; where a tile has none).
-  (define (tileset-image-paths tilesets)
-    (append-map
-     (lambda (ts)
-       (let ((img (tileset-image ts)))
-         (if img
-             (list (image-source img))
-             (map (lambda (t) (and (tile-image t) (image-source (tile-image t))))
-                  (tileset-tiles ts)))))
-     tilesets))
-
-  ;; The paths given (#f left out), each once, in their first order.
-  (define (distinct-paths ps) (delete-duplicates (filter string? ps)))
-
-  (define unset-key (list 'unset))
-
-  (define (live-game-renderer who game what)
-    (let ((r (game-renderer game)))
-      (unless (and r (renderer-alive? r))
-        (error who (sprintf "no renderer: call it from a hook during game-run! (loading ~a)" what)))
-      r))
-
-  (define (game-load-scene! game tmx-path #!key (entities '()) (background #f)
-                            (camera (make-camera)) (camera-target 'camera-target)
-                            (engine-update #f) (objects->entities unset-key) (prefabs #f))
-    (let ((r (live-game-renderer 'game-load-scene! game (sprintf "~s" tmx-path))))
-      (let* ((tm (load-tilemap tmx-path))
-             (_ (check-map-orientation 'game-load-scene! tm))
-             (convert (if (eq? objects->entities unset-key) (and prefabs #t) objects->entities))
-             (convert? (object-layer-selector 'game-load-scene! convert))
-             (map-entities (tilemap-objects->entities tm prefabs: prefabs layers: convert?))
-             (textures (load-textures! r (tilemap-image-paths tm)))
-             (first-ts (and (pair? (tilemap-tilesets tm)) (car (tilemap-tilesets tm))))
-             (first-img (and first-ts (tileset-image first-ts)))
-             (first-tex (and first-img (let ((p (assoc (image-source first-img) textures)))
-                                         (and p (cdr p)))))
-             (shown (if convert
-                        (tilemap-hide-layers tm (lambda (l) (and (eq? (layer-kind l) 'object)
-                                                                 (convert? l))))
-                        tm))
-             (scene (make-scene entities: (append map-entities entities)
-                                tilemap: shown tileset-texture: first-tex
-                                background: background camera: camera
-                                camera-target: camera-target engine-update: engine-update)))
-        (free-textures! game)
-        (game-textures-set! game textures)
-        (game-scene-set! game scene)
-        scene)))
-
-  ;;; (game-load-tilesets! game tilesets) loads a texture for every image
-  ;;; of these tilesets (from load-tileset, make-sheet-tileset or a map)
-  ;;; that the game has none for yet, and adds them to game-textures: a
-  ;;; scene whose map or sprites are built in code draws from them. They
-  ;;; belong to the game like a loaded scene's: the next game-load-scene!
-  ;;; or the end of game-run! frees them. All are loaded or none (a failure
-  ;;; frees what it loaded and changes nothing). Returns the tilesets.
-  (define (game-load-tilesets! game tilesets)
-    (unless (and (list? tilesets) (every tileset? tilesets))
-      (error 'game-load-tilesets! "expected a list of tilesets" tilesets))
-    (let* ((r (live-game-renderer 'game-load-tilesets! game
-                                  (sprintf "~a tileset~a" (length tilesets)
-                                           (if (= 1 (length tilesets)) "" "s"))))
-           (have (game-textures game))
-           (paths (filter (lambda (p) (not (assoc p have)))
-                          (distinct-paths (tileset-image-paths tilesets)))))
-      (game-textures-set! game (append have (load-textures! r paths)))
-      tilesets))
-
-  ;; (path . texture) for each path; on a failure the ones loaded are freed.
-  (define (load-textures! r paths)
-    (let loop ((ps paths) (out '()))
-      (if (null? ps)
-          (reverse out)
-          (let ((tex (handle-exceptions exn
-                         (begin (for-each (lambda (p) (destroy-texture! (cdr p))) out)
-                                (signal exn))
-                       (img-load-texture! r (car ps)))))
-            (loop (cdr ps) (cons (cons (car ps) tex) out)))))))
+      (if record (game-recording game) ran))))

@@ -1,0 +1,141 @@
+;;; (downstroke level): a Tiled map into the game's scene, with the
+;;; textures its images need; tilesets' textures for scenes built in code.
+;;; It needs the game's renderer, so it is called from a hook while
+;;; game-run! runs; (downstroke engine) offers it to games.
+
+(module (downstroke level)
+  (game-load-scene! game-load-tilesets!
+   ;; for the engine: the textures a game owns are freed when it stops
+   free-textures!)
+
+  (import scheme (chicken base) (chicken format) (chicken condition)
+          (downstroke game) (downstroke scene) (downstroke tilemap)
+          (downstroke objects) (downstroke sdl2) (downstroke renderer)
+          (only (downstroke util) filter every append-map delete-duplicates))
+
+  ;;; ------------------------------------------------------------------
+  ;;; (game-load-scene! game tmx-path #!key entities background camera
+  ;;;                   camera-target engine-update objects->entities prefabs)
+  ;;;
+  ;;; Loads the TMX map (load-tilemap), a texture with the game's renderer
+  ;;; for every tileset image (and every tile image of image-collection
+  ;;; tilesets) and every image layer's image, and makes a scene of them
+  ;;; the game's scene, which it also returns. The scene's tileset-texture
+  ;;; is the first tileset's texture (entity sprites); every texture is in
+  ;;; game-textures, which the frame loop passes to render-scene!. It needs
+  ;;; the renderer, so it is called from a hook during game-run! (create:
+  ;;; is the usual place). Loading another scene destroys the previous
+  ;;; scene's textures (each is freed once); the rest are freed when
+  ;;; game-run! ends.
+  ;;;
+  ;;; Map objects become entities only when asked (existing callers, which
+  ;;; pass their entities with entities:, see no change):
+  ;;;   objects->entities: #t converts the objects of every object layer,
+  ;;;     a list of layer names those layers' only, a predicate on layer
+  ;;;     records the layers it accepts; #f none. Default: #f, or #t when
+  ;;;     prefabs: is given.
+  ;;;   prefabs: a collection from load-prefabs: an object whose type (class)
+  ;;;     names a prefab is instantiated from it.
+  ;;; The conversion is (downstroke objects)' tilemap-objects->entities (see
+  ;;; there for the keys an object gives). The scene's entities are the
+  ;;; map's, in file order, followed by entities:, so the caller's (a
+  ;;; player, say) draw on top. The object layers converted are hidden in
+  ;;; the scene's map (tilemap-hide-layers: their objects are still listed
+  ;;; by tilemap-objects), so a tile object is drawn once, as its entity.
+  ;;;
+  ;;; Nothing is changed before the map has loaded, is known to be
+  ;;; orthogonal (another orientation is an error naming the file), its
+  ;;; objects are converted and every texture is loaded; a texture that
+  ;;; fails to load frees the ones loaded before it.
+
+  (define (free-textures! game)
+    (for-each (lambda (p) (destroy-texture! (cdr p))) (game-textures game))
+    (game-textures-set! game '()))
+
+  ;; Every image the map draws: tileset images, tile images of image
+  ;; collections, image layers' images; each path once, in that order.
+  (define (tilemap-image-paths tm)
+    (distinct-paths
+     (append (tileset-image-paths (tilemap-tilesets tm))
+             (map (lambda (l) (and (layer-image l) (image-source (layer-image l))))
+                  (tilemap-image-layers tm)))))
+
+  ;; A tileset's image, or its tiles' images for an image collection (#f
+  ;; where a tile has none).
+  (define (tileset-image-paths tilesets)
+    (append-map
+     (lambda (ts)
+       (let ((img (tileset-image ts)))
+         (if img
+             (list (image-source img))
+             (map (lambda (t) (and (tile-image t) (image-source (tile-image t))))
+                  (tileset-tiles ts)))))
+     tilesets))
+
+  ;; The paths given (#f left out), each once, in their first order.
+  (define (distinct-paths ps) (delete-duplicates (filter string? ps)))
+
+  (define unset-key (list 'unset))
+
+  (define (live-game-renderer who game what)
+    (let ((r (game-renderer game)))
+      (unless (and r (renderer-alive? r))
+        (error who (sprintf "no renderer: call it from a hook during game-run! (loading ~a)" what)))
+      r))
+
+  (define (game-load-scene! game tmx-path #!key (entities '()) (background #f)
+                            (camera (make-camera)) (camera-target 'camera-target)
+                            (engine-update #f) (objects->entities unset-key) (prefabs #f))
+    (let ((r (live-game-renderer 'game-load-scene! game (sprintf "~s" tmx-path))))
+      (let* ((tm (load-tilemap tmx-path))
+             (_ (check-map-orientation 'game-load-scene! tm))
+             (convert (if (eq? objects->entities unset-key) (and prefabs #t) objects->entities))
+             (convert? (object-layer-selector 'game-load-scene! convert))
+             (map-entities (tilemap-objects->entities tm prefabs: prefabs layers: convert?))
+             (textures (load-textures! r (tilemap-image-paths tm)))
+             (first-ts (and (pair? (tilemap-tilesets tm)) (car (tilemap-tilesets tm))))
+             (first-img (and first-ts (tileset-image first-ts)))
+             (first-tex (and first-img (let ((p (assoc (image-source first-img) textures)))
+                                         (and p (cdr p)))))
+             (shown (if convert
+                        (tilemap-hide-layers tm (lambda (l) (and (eq? (layer-kind l) 'object)
+                                                                 (convert? l))))
+                        tm))
+             (scene (make-scene entities: (append map-entities entities)
+                                tilemap: shown tileset-texture: first-tex
+                                background: background camera: camera
+                                camera-target: camera-target engine-update: engine-update)))
+        (free-textures! game)
+        (game-textures-set! game textures)
+        (game-scene-set! game scene)
+        scene)))
+
+  ;;; (game-load-tilesets! game tilesets) loads a texture for every image
+  ;;; of these tilesets (from load-tileset, make-sheet-tileset or a map)
+  ;;; that the game has none for yet, and adds them to game-textures: a
+  ;;; scene whose map or sprites are built in code draws from them. They
+  ;;; belong to the game like a loaded scene's: the next game-load-scene!
+  ;;; or the end of game-run! frees them. All are loaded or none (a failure
+  ;;; frees what it loaded and changes nothing). Returns the tilesets.
+  (define (game-load-tilesets! game tilesets)
+    (unless (and (list? tilesets) (every tileset? tilesets))
+      (error 'game-load-tilesets! "expected a list of tilesets" tilesets))
+    (let* ((r (live-game-renderer 'game-load-tilesets! game
+                                  (sprintf "~a tileset~a" (length tilesets)
+                                           (if (= 1 (length tilesets)) "" "s"))))
+           (have (game-textures game))
+           (paths (filter (lambda (p) (not (assoc p have)))
+                          (distinct-paths (tileset-image-paths tilesets)))))
+      (game-textures-set! game (append have (load-textures! r paths)))
+      tilesets))
+
+  ;; (path . texture) for each path; on a failure the ones loaded are freed.
+  (define (load-textures! r paths)
+    (let loop ((ps paths) (out '()))
+      (if (null? ps)
+          (reverse out)
+          (let ((tex (handle-exceptions exn
+                         (begin (for-each (lambda (p) (destroy-texture! (cdr p))) out)
+                                (signal exn))
+                       (img-load-texture! r (car ps)))))
+            (loop (cdr ps) (cons (cons (car ps) tex) out)))))))

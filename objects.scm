@@ -1,0 +1,169 @@
+;;; (downstroke objects): the objects of a Tiled map's object layers as
+;;; entities, through prefabs when given. Pure; (downstroke tilemap) offers
+;;; it with the maps, and game-load-scene! uses it.
+
+(module (downstroke objects)
+  (map-object->entity tilemap-objects->entities object-layer-selector)
+
+  (import scheme (chicken base) (chicken format) (chicken keyword) (chicken string)
+          (chicken condition)
+          (downstroke map)
+          (only (downstroke prefabs) prefabs? prefab-names instantiate-prefab))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Map objects as entities.
+  ;;;
+  ;;; (map-object->entity tm object #!key prefabs layer) -> an entity alist
+  ;;; (tilemap-objects->entities tm #!key prefabs (layers #t)) -> a list
+  ;;;
+  ;;; An object of a Tiled object layer becomes an entity with, in order:
+  ;;;   #:type       the object's class (its `type` before Tiled 1.9) as a
+  ;;;                symbol, or #f when it has none;
+  ;;;   #:x #:y #:width #:height
+  ;;;                its box (tilemap-object-box): the top-left corner, so a
+  ;;;                tile object, which Tiled anchors at its bottom-left,
+  ;;;                gets #:y = y - height; a polygon its points' bounding
+  ;;;                box; a point 0 x 0. Given the object's layer (layer:,
+  ;;;                which tilemap-objects->entities always gives), the
+  ;;;                layer's offset (its groups' included) is added, so the
+  ;;;                entity is where Tiled shows the object;
+  ;;;   #:object-id  Tiled's object id;
+  ;;;   #:name       the object's name, when it has one;
+  ;;;   #:tile-id    tile objects: the tile's gid (flags cleared), the number
+  ;;;                the renderer draws from the scene's tileset; and
+  ;;;                #:facing -1 when the tile is flipped horizontally;
+  ;;;   #:rotation   degrees clockwise, when not 0 (the box is unrotated);
+  ;;;   #:shape      ellipse, point, polygon, polyline or text (rectangles
+  ;;;                and tile objects have none); #:points for polygons and
+  ;;;                polylines, ((x . y) ...) relative to #:x #:y;
+  ;;;   then every custom property, its name as a keyword ("hp" -> #:hp,
+  ;;;   "gravity?" -> #:gravity?), replacing a key above of the same name.
+  ;;;   Values are as the loader reads them except: colours become the
+  ;;;   (r g b a) lists entities draw with (an unset colour #f), and a
+  ;;;   property named "tags" holding a string ("enemy, solid" or
+  ;;;   "enemy solid") or a list of strings becomes a list of symbols.
+  ;;;
+  ;;; With prefabs: (a collection from load-prefabs), an object whose #:type
+  ;;; names a prefab is instantiated from it (instantiate-prefab), the keys
+  ;;; above as overrides, except a #:width or #:height of 0 (points, empty
+  ;;; rectangles), which would hide the prefab's size. Other objects are
+  ;;; converted as if no prefabs were given.
+  ;;;
+  ;;; layers: which object layers: #t (all), a list of layer names, or a
+  ;;; predicate on layer records. Entities come in file order: layer by
+  ;;; layer, each layer's objects as written. Hidden layers and objects are
+  ;;; converted too (visibility is about drawing; a hidden spawn point is
+  ;;; still a spawn point).
+
+  (define (colour-value v)
+    (if (and (pair? v) (eq? (car v) 'color))
+        (if (null? (cdr v)) #f (cdr v))
+        v))
+
+  (define (tags-value v)
+    (cond ((string? v)
+           (map string->symbol (string-split v " ,\t\n")))
+          ((and (pair? v) (eq? (car v) 'list))
+           (map (lambda (x) (if (string? x) (string->symbol x) x)) (cdr v)))
+          (else v)))
+
+  (define (property-entry p)
+    (let ((key (string->keyword (car p))))
+      (cons key (if (equal? (car p) "tags") (tags-value (cdr p)) (colour-value (cdr p))))))
+
+  ;; Later pairs replace earlier ones of the same key, which keep their place.
+  (define (merge-keys base extra)
+    (let loop ((rest extra) (acc base))
+      (if (null? rest)
+          acc
+          (loop (cdr rest)
+                (if (assq (caar rest) acc)
+                    (map (lambda (p) (if (eq? (car p) (caar rest)) (car rest) p)) acc)
+                    (append acc (list (car rest))))))))
+
+  (define (object-type-symbol o)
+    (let ((c (object-class o)))
+      (and (not (equal? c "")) (string->symbol c))))
+
+  (define (map-object->entity tm o #!key (prefabs #f) (layer #f))
+    (when (and prefabs (not (prefabs? prefabs)))
+      (error 'map-object->entity "prefabs: must be a prefab collection (load-prefabs) or #f"
+             prefabs))
+    (receive (bx by w h) (tilemap-object-box tm o)
+      (let* ((x (if layer (+ bx (layer-offset-x layer)) bx))
+             (y (if layer (+ by (layer-offset-y layer)) by))
+             (type (object-type-symbol o))
+             (shape (object-shape o))
+             (points (object-points o))
+             (x0 (if (pair? points) (apply min (map car points)) 0))
+             (y0 (if (pair? points) (apply min (map cdr points)) 0))
+             (own
+              (append
+               (list (cons #:type type) (cons #:x x) (cons #:y y)
+                     (cons #:width w) (cons #:height h)
+                     (cons #:object-id (object-id o)))
+               (if (equal? (object-name o) "") '() (list (cons #:name (object-name o))))
+               (if (eq? shape 'tile)
+                   (cons (cons #:tile-id (object-gid o))
+                         (if (cell-flipped-horizontally? (object-cell o))
+                             (list (cons #:facing -1))
+                             '()))
+                   '())
+               (if (zero? (object-rotation o)) '() (list (cons #:rotation (object-rotation o))))
+               (if (memq shape '(rectangle tile)) '() (list (cons #:shape shape)))
+               (if (memq shape '(polygon polyline))
+                   (list (cons #:points (map (lambda (p) (cons (- (car p) x0) (- (cdr p) y0)))
+                                             points)))
+                   '())))
+             (e (merge-keys own (map property-entry (object-properties o)))))
+        (if (and prefabs type (memq type (prefab-names prefabs)))
+            (instantiate-prefab
+             prefabs type
+             overrides: (let loop ((ps e) (out '()))
+                          (cond ((null? ps) (reverse out))
+                                ((eq? (caar ps) #:type) (loop (cdr ps) out))
+                                ((and (memq (caar ps) '(#:width #:height))
+                                      (eqv? (cdar ps) 0))
+                                 (loop (cdr ps) out))
+                                (else (loop (cdr ps) (cons (car ps) out))))))
+            e))))
+
+  ;; A predicate on layers from a layers: value (#t, names, or a predicate).
+  (define (object-layer-selector who layers)
+    (cond ((eq? layers #t) (lambda (l) #t))
+          ((not layers) (lambda (l) #f))
+          ((procedure? layers) layers)
+          ((and (list? layers) (every-string? layers))
+           (lambda (l) (and (member (layer-name l) layers) #t)))
+          (else (error who "layers: must be #t, #f, a list of layer names or a predicate"
+                       layers))))
+
+  (define (every-string? l) (or (null? l) (and (string? (car l)) (every-string? (cdr l)))))
+
+  ;; Errors name the map, the layer and the object.
+  (define (object->entity/named tm layer o prefabs)
+    (handle-exceptions exn
+        (error 'tilemap-objects->entities
+               (sprintf "~a: object layer ~s, object ~a~a: ~a"
+                        (or (tilemap-source tm) "map made in code")
+                        (layer-name layer) (object-id o)
+                        (if (equal? (object-name o) "") "" (sprintf " (~s)" (object-name o)))
+                        ((condition-property-accessor 'exn 'message "unknown error") exn)))
+      (map-object->entity tm o prefabs: prefabs layer: layer)))
+
+  (define (tilemap-objects->entities tm #!key (prefabs #f) (layers #t))
+    (when (and prefabs (not (prefabs? prefabs)))
+      (error 'tilemap-objects->entities
+             "prefabs: must be a prefab collection (load-prefabs) or #f" prefabs))
+    (let ((keep? (object-layer-selector 'tilemap-objects->entities layers)))
+      (let loop ((ls (tilemap-object-layers tm)) (out '()))
+        (cond ((null? ls) (reverse out))
+              ((keep? (car ls))
+               (loop (cdr ls)
+                     (let add ((os (layer-objects (car ls))) (out out))
+                       (if (null? os)
+                           out
+                           (add (cdr os)
+                                (cons (object->entity/named tm (car ls) (car os) prefabs)
+                                      out))))))
+              (else (loop (cdr ls) out)))))))
