@@ -77,17 +77,11 @@
    controller-buttons controller-axes)
 
   (import scheme (chicken base) (chicken format) (chicken foreign)
-          (only (downstroke sdl2) keycode->key key-symbols sdl-initialized?))
+          (only (downstroke sdl2) keycode->key key-symbols sdl-initialized? poll-events!
+                controller-buttons controller-axes))
 
   (foreign-declare #<<EOF
 #include <SDL.h>
-
-static SDL_Event downstroke_input_event;
-
-static int downstroke_input_poll(void) {
-  if (SDL_PollEvent(&downstroke_input_event)) return (int)downstroke_input_event.type;
-  return -1;
-}
 
 static int downstroke_push_cbutton(int down, int button) {
   SDL_Event e;
@@ -111,18 +105,6 @@ static int downstroke_push_caxis(int axis, int value) {
   return SDL_PushEvent(&e);
 }
 
-static int downstroke_input_ev_int(int what) {
-  SDL_Event *e = &downstroke_input_event;
-  switch (what) {
-  case 0: return e->key.keysym.sym;
-  case 1: return e->key.repeat != 0;
-  case 2: return e->cbutton.button;
-  case 3: return e->caxis.axis;
-  case 4: return e->caxis.value;
-  case 5: return e->cdevice.which;
-  }
-  return 0;
-}
 EOF
 )
 
@@ -156,12 +138,6 @@ EOF
     (unless (memq a input-actions)
       (error who (sprintf "unknown action ~s (actions: ~s)" a input-actions)))
     a)
-
-  ;; SDL_GameControllerButton and SDL_GameControllerAxis, in enum order.
-  (define controller-buttons
-    '(a b x y back guide start left-stick right-stick left-shoulder right-shoulder
-      dpad-up dpad-down dpad-left dpad-right))
-  (define controller-axes '(left-x left-y right-x right-y trigger-left trigger-right))
 
   ;; A misspelt key, button or axis would never match: it is an error.
   (define (check-source what name known #!optional (hint (sprintf "one of ~s" known)))
@@ -361,20 +337,6 @@ EOF
             ((eq? (car ys) x) i)
             (else (loop (cdr ys) (+ i 1))))))
 
-  (define (nth-or-unknown xs i)
-    (if (and (>= i 0) (< i (length xs))) (list-ref xs i) 'unknown))
-
-  (define ev-int (foreign-lambda int "downstroke_input_ev_int" int))
-
-  (define t-quit (foreign-value "SDL_QUIT" int))
-  (define t-key-down (foreign-value "SDL_KEYDOWN" int))
-  (define t-key-up (foreign-value "SDL_KEYUP" int))
-  (define t-cbutton-down (foreign-value "SDL_CONTROLLERBUTTONDOWN" int))
-  (define t-cbutton-up (foreign-value "SDL_CONTROLLERBUTTONUP" int))
-  (define t-caxis (foreign-value "SDL_CONTROLLERAXISMOTION" int))
-  (define t-cadded (foreign-value "SDL_CONTROLLERDEVICEADDED" int))
-  (define t-cremoved (foreign-value "SDL_CONTROLLERDEVICEREMOVED" int))
-
   ;; Opened controllers: native pointers, closed once by input-close-controllers!.
   (define open-controllers '())
 
@@ -382,26 +344,15 @@ EOF
     (let ((p ((foreign-lambda c-pointer "SDL_GameControllerOpen" int) index)))
       (when p (set! open-controllers (cons p open-controllers)))))
 
-  (define (decode-event type)
-    (cond ((= type t-quit) (list 'quit))
-          ((= type t-key-down) (list 'key-down (keycode->key (ev-int 0)) (= 1 (ev-int 1))))
-          ((= type t-key-up) (list 'key-up (keycode->key (ev-int 0)) (= 1 (ev-int 1))))
-          ((= type t-cbutton-down)
-           (list 'controller-button-down (nth-or-unknown controller-buttons (ev-int 2))))
-          ((= type t-cbutton-up)
-           (list 'controller-button-up (nth-or-unknown controller-buttons (ev-int 2))))
-          ((= type t-caxis)
-           (list 'controller-axis (nth-or-unknown controller-axes (ev-int 3)) (ev-int 4)))
-          ((= type t-cadded) (open-controller! (ev-int 5)) (list 'controller-added (ev-int 5)))
-          ((= type t-cremoved) (list 'controller-removed (ev-int 5)))
-          (else (list 'other type))))
-
-  ;; Every pending SDL event, oldest first, decoded as above.
+  ;; Every pending SDL event, oldest first, as (downstroke sdl2)'s
+  ;; poll-events! reads them; a controller that SDL reports as added is
+  ;; opened here, so its buttons and axes reach the game.
   (define (input-poll-events!)
     (unless (sdl-initialized?) (error 'input-poll-events! "SDL is not initialized (init!)"))
-    (let loop ((out '()))
-      (let ((type ((foreign-lambda int "downstroke_input_poll"))))
-        (if (< type 0) (reverse out) (loop (cons (decode-event type) out))))))
+    (let ((events (poll-events!)))
+      (for-each (lambda (e) (when (eq? (car e) 'controller-added) (open-controller! (cadr e))))
+                events)
+      events))
 
   ;; Starts the game-controller subsystem; #f (and no error) when SDL cannot.
   (define (input-open-controllers!)

@@ -28,7 +28,15 @@
 ;;; Events. poll-event! returns #f when the queue is empty, else a list:
 ;;;   (quit)
 ;;;   (key-down KEY REPEAT?)   (key-up KEY REPEAT?)
+;;;   (controller-button-down BUTTON) (controller-button-up BUTTON)
+;;;   (controller-axis AXIS VALUE) (controller-added INDEX)
+;;;   (controller-removed INSTANCE-ID)
+;;;                            BUTTON and AXIS symbols of controller-buttons
+;;;                            and controller-axes (SDL's enum order), or
+;;;                            unknown
 ;;;   (other TYPE)             any other event, TYPE its SDL type number
+;;; This is the library's one reader of SDL's event queue: (downstroke
+;;; input) builds on it.
 ;;; KEY is a symbol: a..z, n-0..n-9, left right up down, return escape
 ;;; space tab backspace delete insert home end page-up page-down, lshift
 ;;; rshift lctrl rctrl lalt ralt lgui rgui, f1..f12, minus equals comma
@@ -64,7 +72,7 @@
    live-resource-counts
    ;; events
    poll-event! poll-events! push-key-event! push-quit-event!
-   key-symbols keycode->key key->keycode)
+   key-symbols keycode->key key->keycode controller-buttons controller-axes)
 
   (import scheme (chicken base) (chicken foreign) (chicken condition)
           (chicken gc) (chicken format) (chicken bitwise) srfi-4)
@@ -75,9 +83,24 @@
 
 static SDL_Event downstroke_event;
 
+/* The one place the library reads SDL's event queue. */
 static int downstroke_poll(void) {
   if (SDL_PollEvent(&downstroke_event)) return (int)downstroke_event.type;
   return -1;
+}
+
+/* A field of the event just polled. */
+static int downstroke_ev_int(int what) {
+  SDL_Event *e = &downstroke_event;
+  switch (what) {
+  case 0: return e->key.keysym.sym;
+  case 1: return e->key.repeat != 0;
+  case 2: return e->cbutton.button;
+  case 3: return e->caxis.axis;
+  case 4: return e->caxis.value;
+  case 5: return e->cdevice.which;
+  }
+  return 0;
 }
 
 static int downstroke_push_key(int down, int keycode, int repeat) {
@@ -777,14 +800,25 @@ EOF
   ;;; ------------------------------------------------------------------
   ;;; Events
 
-  (define ev-key-sym
-    (foreign-lambda* int () "C_return(downstroke_event.key.keysym.sym);"))
-  (define ev-key-repeat
-    (foreign-lambda* bool () "C_return(downstroke_event.key.repeat != 0);"))
+  (define ev-int (foreign-lambda int "downstroke_ev_int" int))
+
+  ;; SDL_GameControllerButton and SDL_GameControllerAxis, in enum order.
+  (define controller-buttons
+    '(a b x y back guide start left-stick right-stick left-shoulder right-shoulder
+      dpad-up dpad-down dpad-left dpad-right))
+  (define controller-axes '(left-x left-y right-x right-y trigger-left trigger-right))
+
+  (define (nth-or-unknown xs i)
+    (if (and (>= i 0) (< i (length xs))) (list-ref xs i) 'unknown))
 
   (define type-quit (foreign-value "SDL_QUIT" int))
   (define type-key-down (foreign-value "SDL_KEYDOWN" int))
   (define type-key-up (foreign-value "SDL_KEYUP" int))
+  (define type-cbutton-down (foreign-value "SDL_CONTROLLERBUTTONDOWN" int))
+  (define type-cbutton-up (foreign-value "SDL_CONTROLLERBUTTONUP" int))
+  (define type-caxis (foreign-value "SDL_CONTROLLERAXISMOTION" int))
+  (define type-cadded (foreign-value "SDL_CONTROLLERDEVICEADDED" int))
+  (define type-cremoved (foreign-value "SDL_CONTROLLERDEVICEREMOVED" int))
 
   ;; The next event as a list (see the head of this file), or #f.
   (define (poll-event!)
@@ -792,8 +826,16 @@ EOF
     (let ((type ((foreign-lambda int "downstroke_poll"))))
       (cond ((< type 0) #f)
             ((= type type-quit) (list 'quit))
-            ((= type type-key-down) (list 'key-down (keycode->key (ev-key-sym)) (ev-key-repeat)))
-            ((= type type-key-up) (list 'key-up (keycode->key (ev-key-sym)) (ev-key-repeat)))
+            ((= type type-key-down) (list 'key-down (keycode->key (ev-int 0)) (= 1 (ev-int 1))))
+            ((= type type-key-up) (list 'key-up (keycode->key (ev-int 0)) (= 1 (ev-int 1))))
+            ((= type type-cbutton-down)
+             (list 'controller-button-down (nth-or-unknown controller-buttons (ev-int 2))))
+            ((= type type-cbutton-up)
+             (list 'controller-button-up (nth-or-unknown controller-buttons (ev-int 2))))
+            ((= type type-caxis)
+             (list 'controller-axis (nth-or-unknown controller-axes (ev-int 3)) (ev-int 4)))
+            ((= type type-cadded) (list 'controller-added (ev-int 5)))
+            ((= type type-cremoved) (list 'controller-removed (ev-int 5)))
             (else (list 'other type)))))
 
   ;; Every pending event, oldest first.

@@ -97,3 +97,11 @@
     (test-assert "the child ran (its map shows libchicken)" (loaded? "libchicken"))
     (for-each (lambda (lib) (test (sprintf "~a is not loaded" lib) #f (loaded? lib)))
               '("libexpat" "libz.so" "libzstd" "libSDL2-2" "libSDL2_image" "libSDL2_mixer" "libSDL2_ttf"))))
+
+;; SDL's event queue has one reader, (downstroke sdl2)'s poll-event!: two
+;; pumps would each see only some of the events.
+(test-group "layout: one SDL event pump"
+  (let ((readers (filter-words
+                  (lambda (file) (substring-index "SDL_PollEvent" (with-input-from-file file read-string)))
+                  (append (glob "../*.scm") (glob "../*.c") (glob "../*.h")))))
+    (test "only sdl2.scm calls SDL_PollEvent" '("../sdl2.scm") readers)))
