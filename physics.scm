@@ -13,7 +13,7 @@
    apply-velocity-y resolve-tile-collisions-y step-motion motion-pass detect-on-solid
    resolve-entity-collisions sync-groups
    aabb-overlap? entity-tile-cells entity-cell-span tile-push-pos
-   entity-solid-support-below? tile-support-below? resolve-pair push-apart
+   entity-solid-support-below? resolve-pair push-apart
    discrete-safe-speed tunnel-risk?
    *gravity* *jump-force* *entity-ground-contact-tolerance* *entity-ground-vy-max*)
 
@@ -556,9 +556,6 @@
   ;; Tile ground: the row one pixel below the feet, (+ y h 1), under either
   ;; lower corner. The corners are the first and last columns the body
   ;; covers; a zero-width body on a tile edge probes the one column at x.
-  (define (tile-support-below? entity tm)
-    (tile-ground? tm (num entity #:x) (num entity #:y) (num entity #:width) (num entity #:height)))
-
   (define (tile-ground? tm x y w h)
     (let ((row (cell-of (+ y h 1) (tilemap-tile-height tm))))
       (let ((c0 (span-first x (tilemap-tile-width tm)))

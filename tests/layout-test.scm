@@ -105,3 +105,11 @@
                   (lambda (file) (substring-index "SDL_PollEvent" (with-input-from-file file read-string)))
                   (append (glob "../*.scm") (glob "../*.c") (glob "../*.h")))))
     (test "only sdl2.scm calls SDL_PollEvent" '("../sdl2.scm") readers)))
+
+;; docs/modules.org is what tools/make-modules-doc.scm writes from the
+;; modules' own export lists.
+(test-group "layout: docs/modules.org lists every module's exports"
+  (load "../tools/make-modules-doc.scm")
+  (test "docs/modules.org is current (csi -q -s tools/make-modules-doc.scm --write)"
+        (md-text "..")
+        (with-input-from-file "../docs/modules.org" read-string)))

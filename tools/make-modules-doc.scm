@@ -1,0 +1,94 @@
+;;; Writes docs/modules.org: every module of the library, what it is for
+;;; (the first line of its file) and every name it exports, in the order of
+;;; its export list. tests/layout-test.scm checks that the file is what
+;;; this would write, so the list never goes stale; after changing an
+;;; export list, run from the repository root:
+;;;   csi -q -s tools/make-modules-doc.scm --write
+
+(import scheme (chicken base) (chicken io) (chicken string) (chicken sort)
+        (chicken file) (chicken pathname) (chicken process-context) (chicken format))
+
+;; The (module NAME (EXPORT ...) ...) form of a file, or #f.
+(define (md-module-form file)
+  (with-input-from-file file
+    (lambda ()
+      (let loop ()
+        (let ((x (read)))
+          (cond ((eof-object? x) #f)
+                ((and (pair? x) (eq? (car x) 'module)) x)
+                (else (loop))))))))
+
+;; The first sentence of the file's head comment, without
+;; ";;; (downstroke NAME): ", capitalised.
+(define (md-summary file)
+  (let* ((head (let loop ((ls (with-input-from-file file read-lines)) (out '()))
+                 (if (and (pair? ls) (>= (string-length (car ls)) 4)
+                          (string=? ";;; " (substring (car ls) 0 4)))
+                     (loop (cdr ls) (cons (substring (car ls) 4) out))
+                     (string-intersperse (reverse out) " "))))
+         (i (substring-index "): " head))
+         (text (if i (substring head (+ i 3)) head))
+         (end (substring-index ". " text))
+         (sentence (if end (substring text 0 (+ end 1)) text)))
+    (if (string=? sentence "")
+        sentence
+        (string-append (string (char-upcase (string-ref sentence 0))) (substring sentence 1)))))
+
+;; Re-exported modules, for a module whose body is (reexport M ...).
+(define (md-reexports form)
+  (let loop ((body (cdddr form)))
+    (cond ((null? body) '())
+          ((and (pair? (car body)) (eq? (caar body) 'reexport)) (cdar body))
+          (else (loop (cdr body))))))
+
+(define (md-name m) (sprintf "(~a)" (string-intersperse (map ->string m) " ")))
+
+;; Names as =name=, several to a line.
+(define (md-names names)
+  (let loop ((ns names) (line "") (out '()))
+    (if (null? ns)
+        (reverse (if (string=? line "") out (cons line out)))
+        (let* ((w (sprintf "=~a=" (car ns)))
+               (next (if (string=? line "") w (string-append line " " w))))
+          (if (> (string-length next) 76)
+              (loop (cdr ns) w (cons line out))
+              (loop (cdr ns) next out))))))
+
+(define (md-text root)
+  (let* ((files (sort (glob (make-pathname root "*.scm")) string<?))
+         (modules (let loop ((fs files) (out '()))
+                    (if (null? fs) (reverse out)
+                        (let ((form (md-module-form (car fs))))
+                          (loop (cdr fs) (if form (cons (cons (car fs) form) out) out)))))))
+    (string-intersperse
+     (append
+      (list "#+TITLE: Modules and their exports"
+            ""
+            "Every module of the library, in file order, with what it is for and every"
+            "name it exports, in the order of its export list. Games import the"
+            "modules the other documents name; a few names are exported only for a"
+            "sibling module (the source marks them in the export list). This file is"
+            "written by =tools/make-modules-doc.scm= and checked by"
+            "=tests/layout-test.scm=."
+            "")
+      (append-map*
+       (lambda (entry)
+         (let* ((file (pathname-strip-directory (car entry)))
+                (form (cdr entry))
+                (exports (caddr form))
+                (re (md-reexports form)))
+           (append
+            (list (sprintf "* ~a, =~a=" (md-name (cadr form)) file)
+                  (md-summary (car entry)))
+            (if (null? re) '()
+                (list (sprintf "Re-exports ~a."
+                               (string-intersperse (map md-name re) ", "))))
+            (if (null? exports) '() (cons "" (md-names (map ->string exports))))
+            (list ""))))
+       modules))
+     "\n")))
+
+(define (append-map* f ls) (if (null? ls) '() (append (f (car ls)) (append-map* f (cdr ls)))))
+
+(when (member "--write" (command-line-arguments))
+  (with-output-to-file "docs/modules.org" (lambda () (display (md-text ".")))))
