@@ -115,14 +115,15 @@
                            (repository-path))
                       ":"))
 
-;; Runs the code from the repository root; its output lines (stderr kept
-;; apart) and whether it exited with status 0.
-(define (docs-run code name)
-  (let ((file (create-temporary-file ".scm")))
+;; Runs the code with `runner` (csi -q -s, or sh -e) from the repository
+;; root; its output lines (stderr kept apart) and whether it exited with
+;; status 0.
+(define (docs-run code name #!optional (runner "csi -q -s") (extension ".scm"))
+  (let ((file (create-temporary-file extension)))
     (with-output-to-file file (lambda () (for-each (lambda (l) (display l) (newline)) code)))
     (let ((out (create-temporary-file ".out")))
-      (let ((status (system (sprintf "cd .. && CHICKEN_REPOSITORY_PATH='~a' csi -q -s ~a > ~a 2>~a.err"
-                                     (docs-repository-path) (qs file) (qs out) (qs out)))))
+      (let ((status (system (sprintf "cd .. && CHICKEN_REPOSITORY_PATH='~a' ~a ~a > ~a 2>~a.err"
+                                     (docs-repository-path) runner (qs file) (qs out) (qs out)))))
         (let ((lines (with-input-from-file out read-lines))
               (errors (with-input-from-file (string-append out ".err") read-string)))
           (unless (zero? status)
@@ -145,19 +146,10 @@
   (find (lambda (dir) (file-exists? (make-pathname dir "downstroke.engine.o")))
         (repository-path)))
 
-;; Like docs-run, for a shell example.
+;; A shell example runs after the document's Scheme examples are tangled.
 (define (docs-run-sh document code name)
   (docs-tangle! document)
-  (let ((file (create-temporary-file ".sh")))
-    (with-output-to-file file (lambda () (for-each (lambda (l) (display l) (newline)) code)))
-    (let ((out (create-temporary-file ".out")))
-      (let ((status (system (sprintf "cd .. && CHICKEN_REPOSITORY_PATH='~a' sh -e ~a > ~a 2>~a.err"
-                                     (docs-repository-path) (qs file) (qs out) (qs out)))))
-        (let ((lines (with-input-from-file out read-lines))
-              (errors (with-input-from-file (string-append out ".err") read-string)))
-          (unless (zero? status)
-            (print "docs: " name " failed:\n" errors))
-          (values lines (zero? status)))))))
+  (docs-run code name "sh -e" ".sh"))
 
 (define docs-documents
   (cons "../README.org" (sort (glob "../docs/*.org") string<?)))
