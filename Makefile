@@ -13,7 +13,7 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util srfi-197 entity tween animation xml decode map tmx tilemap scene broadphase physics pipeline sdl2 renderer input sound text assets prefabs objects game level engine
+MODULES := test util keywords srfi-197 entity tween animation xml decode map tmx tilemap scene broadphase physics pipeline sdl2 renderer input sound text assets prefabs objects game level engine
 
 # C libraries a module binds through the FFI (passed to the linker by csc).
 LINK_xml    := -L -lexpat
@@ -59,23 +59,26 @@ $(BUILD)/downstroke.%.so: %.scm | $(BUILD)
 
 # What each module imports from this library (compile-time dependencies);
 # tests/layout-test.scm checks these lines against the imports and the .egg.
-$(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so
+$(BUILD)/downstroke.sound.so: $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.sdl2.so: $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.decode.so: $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
-$(BUILD)/downstroke.map.so:       $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.map.so
+$(BUILD)/downstroke.map.so:       $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.tmx.so $(BUILD)/downstroke.objects.so
-$(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so
+$(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so
 $(BUILD)/downstroke.pipeline.so:  $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
-$(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so
-$(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.sdl2.so
+$(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.assets.so:    $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.prefabs.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.objects.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.prefabs.so
-$(BUILD)/downstroke.game.so:      $(BUILD)/downstroke.assets.so
-$(BUILD)/downstroke.level.so:     $(BUILD)/downstroke.game.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.objects.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.game.so $(BUILD)/downstroke.level.so $(BUILD)/downstroke.pipeline.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so
-$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so
+$(BUILD)/downstroke.prefabs.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.objects.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.prefabs.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.game.so:      $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.level.so:     $(BUILD)/downstroke.game.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.objects.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.game.so $(BUILD)/downstroke.level.so $(BUILD)/downstroke.pipeline.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
 
 # C files a module includes (its foreign-declare), found through -I.
 $(BUILD)/downstroke.pipeline.so: needs.c

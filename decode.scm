@@ -31,6 +31,7 @@
    u8vector->u32vector-le
    default-max-size decode-error?)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken foreign) (chicken condition)
           (chicken format) srfi-4)
 
@@ -495,13 +496,13 @@ EOF
                      (%inflate out data (u8vector-length data) gzip?
                                (bound max-size) (and max-size #t)))))
 
-  (define (zlib-inflate data #!key (max-size default-max-size))
+  (define/keywords (zlib-inflate data #!key (max-size default-max-size))
     (inflate-with 'zlib-inflate #f data max-size))
 
-  (define (gzip-inflate data #!key (max-size default-max-size))
+  (define/keywords (gzip-inflate data #!key (max-size default-max-size))
     (inflate-with 'gzip-inflate #t data max-size))
 
-  (define (zstd-decompress data #!key (max-size default-max-size))
+  (define/keywords (zstd-decompress data #!key (max-size default-max-size))
     (check-u8vector 'zstd-decompress data)
     (check-max-size 'zstd-decompress max-size)
     (run-codec 'zstd-decompress
@@ -515,20 +516,20 @@ EOF
     (unless (and (fixnum? level) (<= lo level hi))
       (fail who 'bad-argument (sprintf "level must be an integer from ~a to ~a" lo hi) level)))
 
-  (define (zlib-deflate data #!key (level 6))
+  (define/keywords (zlib-deflate data #!key (level 6))
     (check-u8vector 'zlib-deflate data)
     (check-level 'zlib-deflate level 0 9)
     (run-codec 'zlib-deflate
                (lambda (out) (%deflate out data (u8vector-length data) #f level))))
 
-  (define (gzip-deflate data #!key (level 6))
+  (define/keywords (gzip-deflate data #!key (level 6))
     (check-u8vector 'gzip-deflate data)
     (check-level 'gzip-deflate level 0 9)
     (run-codec 'gzip-deflate
                (lambda (out) (%deflate out data (u8vector-length data) #t level))))
 
   ;; Frames carry their content size and a checksum, so corruption is caught.
-  (define (zstd-compress data #!key (level 3))
+  (define/keywords (zstd-compress data #!key (level 3))
     (check-u8vector 'zstd-compress data)
     (check-level 'zstd-compress level -131072 22)
     (run-codec 'zstd-compress

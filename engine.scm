@@ -24,6 +24,7 @@
    game-run! game-recording game-surface game-load-scene! game-load-tilesets! game-textures
    game-add-state! game-state-set! game-current-state game-states)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken process-context) (chicken fixnum)
           (chicken foreign) (chicken condition) (chicken file) (chicken pathname)
           (downstroke game) (downstroke level) (downstroke pipeline)
@@ -221,7 +222,7 @@
 
   (define unset (list 'unset))
 
-  (define (game-run! game #!key (frames #f) (input-script #f) (record #f)
+  (define/keywords (game-run! game #!key (frames #f) (input-script #f) (record #f)
                      (headless? unset) (screenshot #f))
     (unless (or (not frames) (and (exact-integer? frames) (>= frames 0)))
       (error 'game-run! "frames: must be a non-negative integer or #f" frames))

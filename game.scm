@@ -17,6 +17,7 @@
    game-frame-set! game-surface-set! game-recording-set! game-textures-set!
    active-update-hook active-render-hook)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (downstroke assets))
 
   (define-record-type game
@@ -60,7 +61,7 @@
   ;; width x height is the logical resolution the game draws at; the window
   ;; is `scale` times larger on each axis. input-config #f stands for the
   ;; input module's default configuration.
-  (define (make-game #!key (title "Downstroke Game") (width 640) (height 480)
+  (define/keywords (make-game #!key (title "Downstroke Game") (width 640) (height 480)
                      (scale 1) (frame-delay 16) (input-config #f)
                      (preload #f) (create #f) (update #f) (render #f)
                      (debug? #f) (headless? #f))
@@ -104,7 +105,7 @@
     (render game-state-render)
     (enter game-state-enter))
 
-  (define (game-add-state! game name #!key (update #f) (render #f) (enter #f))
+  (define/keywords (game-add-state! game name #!key (update #f) (render #f) (enter #f))
     (for-each (lambda (what h)
                 (unless (hook? h)
                   (error 'game-add-state! (sprintf "~a must be a procedure or #f" what) h)))

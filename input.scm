@@ -76,6 +76,7 @@
    push-controller-button-event! push-controller-axis-event!
    controller-buttons controller-axes)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken foreign)
           (only (downstroke sdl2) keycode->key key-symbols sdl-initialized? poll-events!
                 controller-buttons controller-axes))
@@ -145,7 +146,7 @@ EOF
       (error 'make-input-config (sprintf "unknown ~a ~s: ~a" what name hint)))
     name)
 
-  (define (make-input-config #!key (keys default-keys) (buttons default-buttons)
+  (define/keywords (make-input-config #!key (keys default-keys) (buttons default-buttons)
                              (axes default-axes) (dead-zone default-dead-zone))
     (for-each (lambda (p)
                 (unless (pair? p) (error 'make-input-config "a key binding is (KEY . ACTION)" p))

@@ -8,6 +8,7 @@
    ;; for the engine: the textures a game owns are freed when it stops
    free-textures!)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken condition)
           (downstroke game) (downstroke scene) (downstroke tilemap)
           (downstroke objects) (downstroke sdl2) (downstroke renderer)
@@ -83,7 +84,7 @@
         (error who (sprintf "no renderer: call it from a hook during game-run! (loading ~a)" what)))
       r))
 
-  (define (game-load-scene! game tmx-path #!key (entities '()) (background #f)
+  (define/keywords (game-load-scene! game tmx-path #!key (entities '()) (background #f)
                             (camera (make-camera)) (camera-target 'camera-target)
                             (engine-update #f) (objects->entities unset-key) (prefabs #f))
     (let ((r (live-game-renderer 'game-load-scene! game (sprintf "~s" tmx-path))))

@@ -94,6 +94,7 @@
    tileset-tile-ids gid-mask)
 
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
           (chicken string) (chicken file) srfi-4
@@ -155,7 +156,7 @@
     (repeat-y? layer-repeat-y?)
     (children layer-children))          ; group layers: list of layers
 
-  (define (make-layer name width height data #!key (visible? #t) (properties '())
+  (define/keywords (make-layer name width height data #!key (visible? #t) (properties '())
                       (id #f) (class "") (opacity 1) (tint #f) (offset-x 0)
                       (offset-y 0) (parallax-x 1) (parallax-y 1) (locked? #f))
     (unless (and (u32vector? data) (= (u32vector-length data) (* width height)))
@@ -434,7 +435,7 @@
                    info tilesets layer-tree))
 
   ;; A one-layer map from rows of tile ids: procedural levels, tests, the REPL.
-  (define (list->tilemap rows #!key (tile-width 16) (tile-height 16) (name "tiles"))
+  (define/keywords (list->tilemap rows #!key (tile-width 16) (tile-height 16) (name "tiles"))
     (let* ((height (length rows))
            (width (if (null? rows) 0 (length (car rows))))
            (data (make-u32vector (* width height) 0)))
@@ -541,7 +542,7 @@
   ;; tile-width x tile-height, columns to a row, read left to right and top
   ;; to bottom (what Tiled calls a tileset based on one image). The image
   ;; must exist; it is not decoded here (the pure core never touches SDL).
-  (define (make-sheet-tileset image #!key tile-width tile-height columns
+  (define/keywords (make-sheet-tileset image #!key tile-width tile-height columns
                               (tile-count #f) (spacing 0) (margin 0)
                               (first-gid 1) (name ""))
     (define (natural key v minimum)

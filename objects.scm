@@ -5,6 +5,7 @@
 (module (downstroke objects)
   (map-object->entity tilemap-objects->entities object-layer-selector)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken keyword) (chicken string)
           (chicken condition)
           (downstroke map)
@@ -85,7 +86,7 @@
     (let ((c (object-class o)))
       (and (not (equal? c "")) (string->symbol c))))
 
-  (define (map-object->entity tm o #!key (prefabs #f) (layer #f))
+  (define/keywords (map-object->entity tm o #!key (prefabs #f) (layer #f))
     (when (and prefabs (not (prefabs? prefabs)))
       (error 'map-object->entity "prefabs: must be a prefab collection (load-prefabs) or #f"
              prefabs))
@@ -151,7 +152,7 @@
                         ((condition-property-accessor 'exn 'message "unknown error") exn)))
       (map-object->entity tm o prefabs: prefabs layer: layer)))
 
-  (define (tilemap-objects->entities tm #!key (prefabs #f) (layers #t))
+  (define/keywords (tilemap-objects->entities tm #!key (prefabs #f) (layers #t))
     (when (and prefabs (not (prefabs? prefabs)))
       (error 'tilemap-objects->entities
              "prefabs: must be a prefab collection (load-prefabs) or #f" prefabs))

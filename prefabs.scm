@@ -45,6 +45,7 @@
   (load-prefabs parse-prefabs prefabs? prefabs-source prefab-names mixin-names
    instantiate-prefab engine-mixins nested-plists->alists)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken keyword)
           (chicken condition) (chicken file) (chicken io)
           (only (downstroke entity) as-entity)
@@ -121,7 +122,7 @@
     (car entry))
 
   ;; data: the form the file holds.
-  (define (parse-prefabs data #!key (source "<prefab data>") (who 'parse-prefabs))
+  (define/keywords (parse-prefabs data #!key (source "<prefab data>") (who 'parse-prefabs))
     (let ((mixins (make-hash-table equal?))
           (table (make-hash-table equal?))
           (mixin-order '())
@@ -242,7 +243,7 @@
             (merge e (list (cons #:anim-name first-name))))
           e)))
 
-  (define (instantiate-prefab prefabs name #!key (overrides '()))
+  (define/keywords (instantiate-prefab prefabs name #!key (overrides '()))
     (unless (prefabs? prefabs)
       (error 'instantiate-prefab "not a prefab collection (see load-prefabs)" prefabs))
     (let ((entry (hash-table-ref/default (prefabs-table prefabs) name #f)))

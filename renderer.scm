@@ -115,6 +115,7 @@
    *debug-hitbox-color* *debug-cell-color* *debug-velocity-color*
    *debug-warning-color* *debug-velocity-scale* *debug-object-color*)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
           (downstroke sdl2) (downstroke entity) (downstroke scene)
           (downstroke map)
@@ -489,7 +490,7 @@
     (and (finite-real? (entity-ref e #:width #f)) (finite-real? (entity-ref e #:height #f))
          (finite-real? (entity-ref e #:x 0)) (finite-real? (entity-ref e #:y 0))))
 
-  (define (render-debug-overlay! r scene #!key (view-width #f) (view-height #f)
+  (define/keywords (render-debug-overlay! r scene #!key (view-width #f) (view-height #f)
                                  (velocity-scale *debug-velocity-scale*))
     (let* ((camera (scene-camera scene))
            (cx (if camera (camera-x camera) 0))
@@ -558,7 +559,7 @@
           ((keep? (car l)) (cons (car l) (filter keep? (cdr l))))
           (else (filter keep? (cdr l)))))
 
-  (define (render-scene! r scene #!key (view-width #f) (view-height #f) (textures #f)
+  (define/keywords (render-scene! r scene #!key (view-width #f) (view-height #f) (textures #f)
                          (debug? #f))
     (let* ((camera (scene-camera scene))
            (cx (if camera (camera-x camera) 0))

@@ -12,6 +12,7 @@
    scene-add-entity scene-remove-entities scene-find-tagged scene-find-all-tagged
    make-camera camera? camera-x camera-y camera-follow scene-follow-camera)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken fixnum) (chicken keyword) (chicken string)
           (chicken condition)
           (downstroke entity) (downstroke map))
@@ -22,7 +23,7 @@
     (x camera-x)
     (y camera-y))
 
-  (define (make-camera #!key (x 0) (y 0)) (%make-camera x y))
+  (define/keywords (make-camera #!key (x 0) (y 0)) (%make-camera x y))
 
   ;; `solids` caches the solid entities of this scene's entity list, which
   ;; ground detection asks for once per gravity entity. It is derived data:
@@ -64,7 +65,7 @@
 
   ;; camera-target: the tag of the entity the camera centres on after each
   ;; update: ('camera-target unless given), or #f for a camera that stays put.
-  (define (make-scene #!key (entities '()) (tilemap #f) (tileset #f)
+  (define/keywords (make-scene #!key (entities '()) (tilemap #f) (tileset #f)
                       (tileset-texture #f) (camera (make-camera))
                       (camera-target 'camera-target) (background #f)
                       (engine-update #f) (collision-mode *default-collision-mode*))
@@ -74,7 +75,7 @@
                  (check-collision-mode collision-mode) #f))
 
   ;; A scene with no map: sprites over a background.
-  (define (make-sprite-scene #!key (entities '()) (tileset #f) (tileset-texture #f)
+  (define/keywords (make-sprite-scene #!key (entities '()) (tileset #f) (tileset-texture #f)
                              (camera (make-camera)) (camera-target 'camera-target)
                              (background #f) (engine-update #f))
     (make-scene entities: entities tileset: tileset tileset-texture: tileset-texture
@@ -85,7 +86,7 @@
   (define unset (list 'unset))
   (define (given? v) (not (eq? v unset)))
 
-  (define (update-scene s #!key (entities unset) (tilemap unset) (tileset unset)
+  (define/keywords (update-scene s #!key (entities unset) (tilemap unset) (tileset unset)
                         (tileset-texture unset) (camera unset) (camera-target unset)
                         (background unset) (engine-update unset) (collision-mode unset))
     (let ((pick (lambda (new old) (if (given? new) new old))))

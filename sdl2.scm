@@ -74,6 +74,7 @@
    poll-event! poll-events! push-key-event! push-quit-event!
    key-symbols keycode->key key->keycode controller-buttons controller-axes)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken foreign) (chicken condition)
           (chicken gc) (chicken format) (chicken bitwise) srfi-4)
 
@@ -436,7 +437,7 @@ EOF
   ;; An accelerated renderer for the window, falling back to SDL's software
   ;; renderer when no accelerated one can be made. vsync?: asks for
   ;; presentation synchronised with the display (accelerated only).
-  (define (create-renderer! w #!key (vsync? #f))
+  (define/keywords (create-renderer! w #!key (vsync? #f))
     (let ((wp (live-window 'create-renderer! w)))
       (when (window-renderer w)
         (error 'create-renderer! "the window already has a renderer" w))
@@ -560,7 +561,7 @@ EOF
   ;; are rects or #f (the whole texture / target); flip is a list of the
   ;; symbols horizontal and vertical; angle in degrees, clockwise, about
   ;; the centre of dst.
-  (define (render-copy! r t src dst #!key (flip '()) (angle 0))
+  (define/keywords (render-copy! r t src dst #!key (flip '()) (angle 0))
     (let ((rp (live-renderer 'render-copy! r))
           (tp (live-texture 'render-copy! t)))
       (unless (eq? (texture-renderer t) r)
@@ -845,7 +846,7 @@ EOF
         (if e (loop (cons e out)) (reverse out)))))
 
   ;; (push-key-event! 'key-down 'left #!key repeat?)
-  (define (push-key-event! type key #!key (repeat? #f))
+  (define/keywords (push-key-event! type key #!key (repeat? #f))
     (unless initialized? (error 'push-key-event! "SDL is not initialized (init!)"))
     (let ((down (case type
                   ((key-down) 1)

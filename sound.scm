@@ -44,6 +44,7 @@
    sound-volume-set! music-volume-set! sound-volume music-volume
    volume->mixer sound-resource-counts)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken foreign) (chicken condition)
           (chicken gc) (chicken format))
 
@@ -132,7 +133,7 @@ EOF
 
   ;; Opening twice is allowed and does nothing; shut down first to change
   ;; the format.
-  (define (init-audio! #!key (frequency 44100) (channels 2) (chunk-size 1024))
+  (define/keywords (init-audio! #!key (frequency 44100) (channels 2) (chunk-size 1024))
     (check-positive 'init-audio! "frequency:" frequency)
     (check-positive 'init-audio! "channels:" channels)
     (check-positive 'init-audio! "chunk-size:" chunk-size)
@@ -267,7 +268,7 @@ EOF
       (set! current-music m))
     (void))
 
-  (define (play-music! #!key (volume 1.0) (loops -1))
+  (define/keywords (play-music! #!key (volume 1.0) (loops -1))
     (check-open 'play-music!)
     (unless current-music
       (error 'play-music! "no music loaded (call load-music! first)"))

@@ -46,6 +46,7 @@
    sprite-font-glyph-height sprite-font-first-char sprite-font-columns
    draw-sprite-text! sprite-text-size)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken foreign) (chicken gc) (chicken format)
           (chicken file) (chicken condition)
           (downstroke sdl2))
@@ -164,7 +165,7 @@ EOF
     (foreign-lambda int "downstroke_draw_text" c-pointer c-pointer c-string
                     int int int int int int (c-pointer int) (c-pointer int)))
 
-  (define (draw-text! renderer font string x y #!key (color '(255 255 255)))
+  (define/keywords (draw-text! renderer font string x y #!key (color '(255 255 255)))
     (let ((rp (renderer-pointer 'draw-text! renderer))
           (fp (live-font 'draw-text! font))
           (c (color-bytes 'draw-text! color)))
@@ -194,7 +195,7 @@ EOF
 
   (define (positive-int? v) (and (exact-integer? v) (> v 0)))
 
-  (define (make-sprite-font texture #!key (glyph-width #f) (glyph-height #f)
+  (define/keywords (make-sprite-font texture #!key (glyph-width #f) (glyph-height #f)
                             (first-char #\space) (columns 16))
     (unless (texture? texture) (error 'make-sprite-font "not a texture" texture))
     (unless (positive-int? glyph-width)
@@ -223,14 +224,14 @@ EOF
   (define (check-scale who scale)
     (unless (positive-int? scale) (error who "scale: must be a positive integer" scale)))
 
-  (define (sprite-text-size sf string #!key (scale 1))
+  (define/keywords (sprite-text-size sf string #!key (scale 1))
     (check-scale 'sprite-text-size scale)
     (text-string 'sprite-text-size string)
     (receive (cols lines) (walk-text string void)
       (values (* cols (sprite-font-glyph-width sf) scale)
               (* lines (sprite-font-glyph-height sf) scale))))
 
-  (define (draw-sprite-text! renderer sf string x y #!key (scale 1))
+  (define/keywords (draw-sprite-text! renderer sf string x y #!key (scale 1))
     (check-scale 'draw-sprite-text! scale)
     (text-string 'draw-sprite-text! string)
     (let* ((tex (sprite-font-texture sf))

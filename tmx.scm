@@ -12,6 +12,7 @@
 (module (downstroke tmx)
   (load-tilemap tilemap-max-cells load-tileset)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
           (chicken string) (chicken file) srfi-4
@@ -946,7 +947,7 @@
   ;; (make-sprite-scene tileset:). Its gids start at first-gid, as in a map
   ;; that listed the file there, so 1 is its first tile by default. Errors
   ;; are the loader's: they name the file and what is wrong.
-  (define (load-tileset path #!key (first-gid 1))
+  (define/keywords (load-tileset path #!key (first-gid 1))
     (unless (string? path)
       (error 'load-tileset "the path must be a string" path))
     (check-integer 'load-tileset "" "first-gid:" first-gid 1)

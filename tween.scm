@@ -53,6 +53,7 @@
   (make-tween tween? tween-step tween-finished? tween-active?
    step-tweens *ease-table* ease-procedure)
 
+  (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken keyword)
           (downstroke entity))
 
@@ -212,7 +213,7 @@
                 (loop (cdr rest) (cons key seen)
                       (cons (cons key (cons (cdr start) target)) out))))))))
 
-  (define (make-tween entity #!key props (duration 500) (delay 0) (ease 'linear)
+  (define/keywords (make-tween entity #!key props (duration 500) (delay 0) (ease 'linear)
                       (on-complete #f) (repeat 0) (yoyo? #f))
     (let ((e (as-entity entity)))
       (unless props
