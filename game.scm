@@ -58,6 +58,35 @@
   (define (positive-integer? v) (and (exact-integer? v) (positive? v)))
   (define (hook? v) (or (not v) (procedure? v)))
 
+  ;; How many arguments a procedure takes, as (min . max) with max #f for
+  ;; any number, read from CHICKEN's procedure-information, e.g.
+  ;; (? game dt) or (named a . rest); #f when CHICKEN does not know (code
+  ;; compiled with -d0).
+  (define (procedure-arity proc)
+    (let ((info (procedure-information proc)))
+      (and (pair? info)
+           (let count ((args (cdr info)) (n 0))
+             (cond ((null? args) (cons n n))
+                   ((symbol? args) (cons n #f))          ; a dotted rest
+                   ((memq (car args) '(#!optional #!rest #!key)) (cons n #f))
+                   (else (count (cdr args) (+ n 1))))))))
+
+  ;; A hook is called with `n` arguments, shown as `call`: one that cannot
+  ;; take them is an error now, naming the hook, not at its first call.
+  (define (check-hook who what proc n call)
+    (when proc
+      (unless (procedure? proc)
+        (error (sprintf "~a: ~a must be a procedure or #f, got ~s" who what proc)))
+      (let ((arity (procedure-arity proc)))
+        (when (and arity (or (< n (car arity)) (and (cdr arity) (> n (cdr arity)))))
+          (error (sprintf "~a: ~a hook ~s takes ~a; it is called as ~a"
+                              who what (procedure-information proc)
+                              (cond ((not (cdr arity)) (sprintf "at least ~a arguments" (car arity)))
+                                    ((= 1 (car arity)) "1 argument")
+                                    (else (sprintf "~a arguments" (car arity))))
+                              call)))))
+    proc)
+
   ;; width x height is the logical resolution the game draws at; the window
   ;; is `scale` times larger on each axis. input-config #f stands for the
   ;; input module's default configuration.
@@ -71,10 +100,10 @@
                 (check "scale:" positive-integer? scale)
                 (check "frame-delay:" positive-integer? frame-delay)
                 input-config
-                (check "preload:" hook? preload)
-                (check "create:" hook? create)
-                (check "update:" hook? update)
-                (check "render:" hook? render)
+                (check-hook 'make-game "preload:" preload 1 "(preload game)")
+                (check-hook 'make-game "create:" create 1 "(create game)")
+                (check-hook 'make-game "update:" update 2 "(update game dt)")
+                (check-hook 'make-game "render:" render 1 "(render game)")
                 debug? headless?
                 #f #f #f #f 0 (make-asset-registry) #f '() #f #f '()))
 
@@ -106,10 +135,9 @@
     (enter game-state-enter))
 
   (define/keywords (game-add-state! game name #!key (update #f) (render #f) (enter #f))
-    (for-each (lambda (what h)
-                (unless (hook? h)
-                  (error 'game-add-state! (sprintf "~a must be a procedure or #f" what) h)))
-              '("update:" "render:" "enter:") (list update render enter))
+    (check-hook 'game-add-state! "update:" update 2 "(update game dt)")
+    (check-hook 'game-add-state! "render:" render 1 "(render game)")
+    (check-hook 'game-add-state! "enter:" enter 1 "(enter game)")
     (game-states-set! game (cons (cons name (make-game-state update render enter))
                                  (let loop ((ss (game-states game)))
                                    (cond ((null? ss) '())

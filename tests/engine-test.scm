@@ -66,6 +66,29 @@
     (game-start! g)
     (test "game-start! runs preload then create" '(preload create) (reverse log))))
 
+(test-group "hooks are checked when the game is made"
+  (define (says text thunk)
+    (handle-exceptions e (and (substring-index text (error-text e)) #t) (thunk) #f))
+  (test-assert "update: taking (game) alone is named, with how it is called"
+               (says "make-game: update: hook (? game) takes 1 argument; it is called as (update game dt)"
+                     (lambda () (make-game update: (lambda (game) game)))))
+  (test-assert "render: taking (game dt)"
+               (says "make-game: render: hook (? game dt) takes 2 arguments; it is called as (render game)"
+                     (lambda () (make-game render: (lambda (game dt) game)))))
+  (test-assert "create: taking nothing"
+               (says "make-game: create: hook (?) takes 0 arguments; it is called as (create game)"
+                     (lambda () (make-game create: (lambda () 1)))))
+  (test-assert "a state's enter: taking two"
+               (says "game-add-state!: enter: hook (? a b) takes 2 arguments; it is called as (enter game)"
+                     (lambda () (game-add-state! (make-game) 'title enter: (lambda (a b) a)))))
+  (test-assert "rest and optional arguments are accepted"
+               (game? (make-game update: (lambda (game . more) game)
+                                 render: (lambda (game #!optional extra) game)
+                                 preload: (lambda args #t))))
+  (test-assert "a value that is no procedure"
+               (says "make-game: create: must be a procedure or #f, got 5"
+                     (lambda () (make-game create: 5)))))
+
 (test-group "2.3 engine-update dispatch"
   (let ((g (game-with (make-scene entities: (list (ent #:gravity? #t #:x 0 #:y 0 #:vy 0))))))
     (run-engine-update! g 16)
