@@ -43,8 +43,14 @@ here="$(cd "$(dirname "$0")/.." && pwd)"
 work="$(mktemp -d "${TMPDIR:-/tmp}/downstroke-install.XXXXXX")"
 trap 'rm -rf "$work"' EXIT
 mkdir "$work/src"
-(cd "$here" && git ls-files -z --cached --others --exclude-standard |
-   tar --null -T - -cf - 2>/dev/null) | tar -xf - -C "$work/src"
+if git -C "$here" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  (cd "$here" && git ls-files -z --cached --others --exclude-standard |
+     tar --null -T - -cf - 2>/dev/null) | tar -xf - -C "$work/src"
+else
+  # not a git checkout (a release tarball): everything but build products
+  (cd "$here" && tar --exclude=./build --exclude=./build2 --exclude='./downstroke.*.so' \
+     --exclude='./downstroke.*.o' --exclude='./downstroke.*.link' -cf - .) | tar -xf - -C "$work/src"
+fi
 chmod 755 "$work"
 
 if [ "$(id -u)" -eq 0 ]; then
