@@ -74,7 +74,7 @@ $(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so $(BUILD)/downstrok
 $(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.assets.so:    $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.prefabs.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.objects.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.prefabs.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.objects.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.prefabs.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.game.so:      $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.level.so:     $(BUILD)/downstroke.game.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.objects.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.game.so $(BUILD)/downstroke.level.so $(BUILD)/downstroke.pipeline.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.keywords.so

@@ -98,7 +98,7 @@
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
           (chicken string) (chicken file) srfi-4
-          (only (downstroke util) filter append-map any
+          (only (downstroke util) filter append-map any list-min list-max string-concatenate
                 make-hash-table hash-table-ref/default hash-table-set!
                 hash-table-exists?))
 
@@ -381,8 +381,8 @@
          (let ((ps (object-points object)))
            (if (null? ps)
                (values x y 0 0)
-               (let ((x0 (apply min (map car ps))) (x1 (apply max (map car ps)))
-                     (y0 (apply min (map cdr ps))) (y1 (apply max (map cdr ps))))
+               (let ((x0 (list-min (map car ps))) (x1 (list-max (map car ps)))
+                     (y0 (list-min (map cdr ps))) (y1 (list-max (map cdr ps))))
                  (values (+ x x0) (+ y y0) (- x1 x0) (- y1 y0))))))
         ((point) (values x y 0 0))
         (else (values x y w h)))))

@@ -9,7 +9,8 @@
   (import scheme (chicken base) (chicken format) (chicken keyword) (chicken string)
           (chicken condition)
           (downstroke map)
-          (only (downstroke prefabs) prefabs? prefab-names instantiate-prefab))
+          (only (downstroke prefabs) prefabs? prefab-names instantiate-prefab)
+          (only (downstroke util) list-min))
 
   ;;; ------------------------------------------------------------------
   ;;; Map objects as entities.
@@ -96,8 +97,8 @@
              (type (object-type-symbol o))
              (shape (object-shape o))
              (points (object-points o))
-             (x0 (if (pair? points) (apply min (map car points)) 0))
-             (y0 (if (pair? points) (apply min (map cdr points)) 0))
+             (x0 (if (pair? points) (list-min (map car points)) 0))
+             (y0 (if (pair? points) (list-min (map cdr points)) 0))
              (own
               (append
                (list (cons #:type type) (cons #:x x) (cons #:y y)

@@ -17,7 +17,7 @@
           (chicken bitwise) (chicken pathname) (chicken condition)
           (chicken string) (chicken file) srfi-4
           (downstroke xml) (downstroke decode) (downstroke map)
-          (only (downstroke util) filter append-map any
+          (only (downstroke util) filter append-map any list-min list-max string-concatenate
                 make-hash-table hash-table-ref/default hash-table-set!
                 hash-table-exists?))
   ;;; ------------------------------------------------------------------
@@ -45,9 +45,9 @@
         (let ((msg ((condition-property-accessor 'exn 'message #f) exn))
               (args ((condition-property-accessor 'exn 'arguments '()) exn)))
           (if (string? msg)
-              (apply string-append msg
-                     (map (lambda (a) (sprintf " ~s" a))
-                          (if (list? args) args '())))
+              (string-concatenate
+               (cons msg (map (lambda (a) (sprintf " ~s" a))
+                              (if (list? args) args '()))))
               (sprintf "~s" exn)))
         (sprintf "~s" exn)))
 
@@ -85,7 +85,7 @@
             (else (loop (cdr cs))))))
 
   (define (x-text node)
-    (apply string-append (filter string? (cdr node))))
+    (string-concatenate (filter string? (cdr node))))
 
   ;; Each attribute reader takes ctx: (file . "what is being read").
   (define (ctx-file ctx) (car ctx))
@@ -477,7 +477,7 @@
                  (n (or (tileset-tile-count ts) 0))
                  (ids (tileset-tile-ids ts))
                  (top (+ (tileset-first-gid ts)
-                         (max n (if (null? ids) 0 (+ 1 (apply max ids)))))))
+                         (max n (if (null? ids) 0 (+ 1 (list-max ids)))))))
             (loop (cdr l) (max m top))))))
 
   (define (load-template st file ctx tpl stack)
@@ -875,10 +875,10 @@
                                      (decode-cells lctx data encoding compression map-w map-h)))))))
                    tile-nodes))
              (chunks (if infinite? (append-map cdr decoded) '()))
-             (x0 (if (null? chunks) 0 (apply min (map car chunks))))
-             (y0 (if (null? chunks) 0 (apply min (map cadr chunks))))
-             (x1 (if (null? chunks) 0 (apply max (map (lambda (c) (+ (car c) (caddr c))) chunks))))
-             (y1 (if (null? chunks) 0 (apply max (map (lambda (c) (+ (cadr c) (cadddr c))) chunks))))
+             (x0 (if (null? chunks) 0 (list-min (map car chunks))))
+             (y0 (if (null? chunks) 0 (list-min (map cadr chunks))))
+             (x1 (if (null? chunks) 0 (list-max (map (lambda (c) (+ (car c) (caddr c))) chunks))))
+             (y1 (if (null? chunks) 0 (list-max (map (lambda (c) (+ (cadr c) (cadddr c))) chunks))))
              (w (if infinite? (- x1 x0) map-w))
              (h (if infinite? (- y1 y0) map-h)))
         (when infinite?

@@ -22,6 +22,9 @@
    filter remove partition any every find find-tail count iota take drop
    take-while drop-while last append-map filter-map delete delete-duplicates
    list-index fold reduce append-reverse
+   ;; for lists as long as the input: CHICKEN 5.3's apply does not return
+   ;; with about 32,000 arguments, so (apply max l) is not an option
+   list-min list-max string-concatenate
    ;; SRFI 69
    make-hash-table hash-table? hash-table-ref hash-table-ref/default
    hash-table-set! hash-table-delete! hash-table-exists? hash-table-update!
@@ -194,6 +197,29 @@
 
   (define (reduce f ridentity lst)
     (if (null? lst) ridentity (fold f (car lst) (cdr lst))))
+
+  ;; The least and greatest number of a non-empty list, in one walk.
+  (define (list-min lst)
+    (when (null? lst) (error 'list-min "empty list"))
+    (foldl min (car lst) (cdr lst)))
+
+  (define (list-max lst)
+    (when (null? lst) (error 'list-max "empty list"))
+    (foldl max (car lst) (cdr lst)))
+
+  ;; The strings of a list joined, in one copy of each.
+  (define (string-concatenate strings)
+    (let* ((total (foldl (lambda (n s) (+ n (string-length s))) 0 strings))
+           (out (make-string total)))
+      (let loop ((ss strings) (at 0))
+        (if (null? ss)
+            out
+            (let ((n (string-length (car ss))))
+              (let copy ((i 0))
+                (when (< i n)
+                  (string-set! out (+ at i) (string-ref (car ss) i))
+                  (copy (+ i 1))))
+              (loop (cdr ss) (+ at n)))))))
 
   ;;; ------------------------------------------------------------------
   ;;; Hashing

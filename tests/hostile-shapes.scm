@@ -1,0 +1,83 @@
+;;; Run by hostile-test.scm in a child process under a time limit (a
+;;; regression would hang rather than fail): each shape prints
+;;; (name value) for the parent to check.
+
+(import scheme (chicken base) (chicken string) (chicken format) (chicken file)
+        (chicken pathname) (chicken process-context) (chicken process-context posix) (chicken port)
+        (downstroke tilemap) (downstroke util))
+
+(define ho-dir (make-pathname (or (get-environment-variable "TMPDIR") "/tmp")
+                              (sprintf "downstroke-hostile-~a" (current-process-id))))
+(create-directory ho-dir #t)
+
+(define (ho-write name text)
+  (let ((path (make-pathname ho-dir name)))
+    (with-output-to-file path (lambda () (display text)))
+    path))
+
+;; n copies of (piece i), joined.
+(define (ho-repeat n piece)
+  (with-output-to-string
+    (lambda () (let loop ((i 0)) (when (< i n) (display (piece i)) (loop (+ i 1)))))))
+
+(define ho-n 100000)
+
+;; A map whose one tileset is an image-less collection (no image to find).
+(define (ho-map body #!key (attrs "") (width 1) (height 1) (tileset ""))
+  (string-append
+   "<?xml version=\"1.0\"?><map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\""
+   (number->string width) "\" height=\"" (number->string height)
+   "\" tilewidth=\"8\" tileheight=\"8\"" attrs ">" tileset body "</map>"))
+
+(define (test name expected value) (write (list name value)) (newline))
+(let ()
+  (test "list-max and list-min over 100,000 numbers" '(99999 0)
+        (let ((l (iota ho-n))) (list (list-max l) (list-min l))))
+  (test "string-concatenate of 100,000 strings" 200000
+        (string-length (string-concatenate (map (lambda (i) "ab") (iota ho-n)))))
+
+  ;; a polygon of 100,000 points: its box, and its entity
+  (let* ((points (ho-repeat ho-n (lambda (i) (sprintf "~a,~a " (modulo i 1000) (quotient i 100)))))
+         (p (ho-write "polygon.tmx"
+                      (ho-map (string-append "<layer id=\"1\" name=\"g\" width=\"1\" height=\"1\"><data encoding=\"csv\">0</data></layer>"
+                                             "<objectgroup id=\"2\" name=\"o\"><object id=\"1\" x=\"5\" y=\"7\"><polygon points=\""
+                                             points "\"/></object></objectgroup>"))))
+         (tm (load-tilemap p))
+         (e (car (tilemap-objects->entities tm))))
+    (test "the polygon's box spans its points" '(5 7 999 999)
+          (map (lambda (k) (cdr (assq k e))) '(#:x #:y #:width #:height)))
+    (test "every point is kept" ho-n (length (cdr (assq #:points e)))))
+
+  ;; an infinite map of 100,000 one-cell chunks in a row
+  (let* ((chunks (ho-repeat ho-n (lambda (i) (sprintf "<chunk x=\"~a\" y=\"0\" width=\"1\" height=\"1\">1</chunk>" (- i 50000)))))
+         (p (ho-write "chunks.tmx"
+                      (ho-map (string-append "<layer id=\"1\" name=\"g\" width=\"1\" height=\"1\"><data encoding=\"csv\">"
+                                             chunks "</data></layer>")
+                              attrs: " infinite=\"1\""
+                              tileset: "<tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"1\" columns=\"0\"><tile id=\"0\"/></tileset>")))
+         (tm (load-tilemap p)))
+    (test "the map covers the union of 100,000 chunks" (list -50000 ho-n)
+          (list (tilemap-origin-col tm) (tilemap-width tm)))
+    (test "the last chunk's cell" 1 (tilemap-tile-at tm 49999 0)))
+
+  ;; a property whose text reaches the loader in 100,000 pieces, split by
+  ;; elements between them (xml.scm joins the runs expat hands over, but
+  ;; not across an element)
+  (let* ((text (ho-repeat ho-n (lambda (i) "ab<x/>")))
+         (p (ho-write "pieces.tmx"
+                      (ho-map (string-append "<properties><property name=\"long\">" text "</property></properties>"
+                                             "<layer id=\"1\" name=\"g\" width=\"1\" height=\"1\"><data encoding=\"csv\">0</data></layer>"))))
+         (tm (load-tilemap p)))
+    (test "the property is whole" (* 2 ho-n)
+          (string-length (property-ref (tilemap-properties tm) "long"))))
+
+  ;; a tileset listing 100,000 tiles: the map's gid range is computed from their ids
+  (let* ((tiles (ho-repeat ho-n (lambda (i) (sprintf "<tile id=\"~a\"/>" i))))
+         (p (ho-write "tiles.tmx"
+                      (ho-map "<layer id=\"1\" name=\"g\" width=\"1\" height=\"1\"><data encoding=\"csv\">100000</data></layer>"
+                              tileset: (string-append "<tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"0\" columns=\"0\">"
+                                                      tiles "</tileset>"))))
+         (tm (load-tilemap p)))
+    (test "the cell names the 100,000th tile" ho-n (tilemap-tile-at tm 0 0))))
+
+(delete-directory ho-dir #t)
