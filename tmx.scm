@@ -16,6 +16,7 @@
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
           (chicken string) (chicken file) srfi-4
+          (rename (only (chicken file posix) regular-file?) (regular-file? posix-regular-file?))
           (downstroke xml) (downstroke decode) (downstroke map)
           (only (downstroke util) filter append-map any list-min list-max string-concatenate
                 make-hash-table hash-table-ref/default hash-table-set!
@@ -174,12 +175,27 @@
         (normalize-pathname path)
         (normalize-pathname (make-pathname (pathname-directory relative-to) path))))
 
-  ;; A file a path names: present, and not a directory.
-  (define (regular-file? path) (and (file-exists? path) (not (directory-exists? path))))
+  ;; Why a path cannot be read as a file, or #f when it can: it must name
+  ;; a regular file. A directory, a FIFO or /dev/stdin would block the
+  ;; loader or fail in expat; a NUL byte cannot reach the system at all.
+  (define (unreadable-file path)
+    (cond ((string-index* path #\x0) "has a NUL byte in its name")
+          ((not (file-exists? path)) "not found")
+          ((not (posix-regular-file? path)) "is not a regular file (a directory, device or pipe)")
+          (else #f)))
+
+  (define (string-index* s c)
+    (let loop ((i 0))
+      (cond ((= i (string-length s)) #f)
+            ((char=? (string-ref s i) c) i)
+            (else (loop (+ i 1))))))
+
+  (define (regular-file? path) (not (unreadable-file path)))
 
   (define (check-exists ctx path what)
-    (unless (regular-file? path)
-      (tmx-error (ctx-file ctx) "~a: ~a file ~s not found" (ctx-what ctx) what path)))
+    (let ((why (unreadable-file path)))
+      (when why
+        (tmx-error (ctx-file ctx) "~a: ~a file ~s ~a" (ctx-what ctx) what path why))))
 
   ;; The root element of an XML file, which must be a <tag>.
   (define (read-root ctx path tag)
@@ -939,8 +955,9 @@
       (error 'load-tilemap "the path must be a string" path))
     (with-tmx-context path "cannot load the map"
       (lambda ()
-        (unless (file-exists? path)
-          (tmx-error path "no such file"))
+        (let ((why (unreadable-file path)))
+          (cond ((equal? why "not found") (tmx-error path "no such file"))
+                (why (tmx-error path "the map ~a" why))))
         (read-tilemap path))))
 
   ;; A .tsx file on its own: the sprites of a scene without a map
@@ -954,8 +971,9 @@
     (parameterize ((loader 'load-tileset))
       (with-tmx-context path "cannot load the tileset"
         (lambda ()
-          (unless (regular-file? path)
-            (tmx-error path "no such file"))
+          (let ((why (unreadable-file path)))
+            (cond ((equal? why "not found") (tmx-error path "no such file"))
+                  (why (tmx-error path "the tileset ~a" why))))
           (let ((path (normalize-pathname path)))
             (parse-tileset path (read-root (cons path "tileset") path 'tileset)
                            first-gid path))))))

@@ -80,4 +80,24 @@
          (tm (load-tilemap p)))
     (test "the cell names the 100,000th tile" ho-n (tilemap-tile-at tm 0 0))))
 
+
+;; Map sources that are not regular files: each load must fail at once
+;; with an error naming the map and the source (before, a FIFO or
+;; /dev/stdin blocked the loader for ever).
+(import (chicken condition) (chicken process))
+(define (ho-error thunk)
+  (handle-exceptions e ((condition-property-accessor 'exn 'message "?") e) (thunk) "no error"))
+(define fifo (make-pathname ho-dir "pipe.tsx"))
+(system (sprintf "mkfifo '~a'" fifo))
+(define (map-with-tileset source)
+  (ho-write "source.tmx"
+            (ho-map (string-append "<tileset firstgid=\"1\" source=\"" source "\"/>"
+                                   "<layer id=\"1\" name=\"g\" width=\"1\" height=\"1\"><data encoding=\"csv\">0</data></layer>"))))
+(let ((p (map-with-tileset "/dev/stdin")))
+  (write (list "a tileset source of /dev/stdin" (ho-error (lambda () (load-tilemap p))))) (newline))
+(let ((p (map-with-tileset fifo)))
+  (write (list "a tileset source that is a FIFO" (ho-error (lambda () (load-tilemap p))))) (newline))
+(write (list "a map that is a FIFO" (ho-error (lambda () (load-tilemap fifo))))) (newline)
+(write (list "a map path with a NUL byte" (ho-error (lambda () (load-tilemap (string-append "le" (string (integer->char 0)) "vel.tmx")))))) (newline)
+
 (delete-directory ho-dir #t)

@@ -16,7 +16,7 @@
 
 (define ho-results
   (with-input-from-pipe
-   (sprintf "CHICKEN_REPOSITORY_PATH=~a timeout 300 csi -q -s hostile-shapes.scm 2>&1"
+   (sprintf "CHICKEN_REPOSITORY_PATH=~a timeout 300 csi -q -s hostile-shapes.scm"
             (qs (ho-repository-path)))
    ;; whatever is not a datum (an error's trace) ends the reading
    (lambda () (let loop ((out '()))
@@ -42,3 +42,17 @@
                   (list "the last chunk's cell" 1)
                   (list "the property is whole" 200000)
                   (list "the cell names the 100,000th tile" 100000))))
+
+(define (every-substring? parts text)
+  (or (null? parts) (and (substring-index (car parts) text) (every-substring? (cdr parts) text))))
+
+;; (name . texts the error must contain)
+(test-group "hostile: map sources are read only from regular files"
+  (for-each (lambda (c)
+              (let ((msg (ho-result (car c))))
+                (test-assert (sprintf "~a: ~a" (car c) msg)
+                             (and (string? msg) (every-substring? (cdr c) msg)))))
+            (list (list "a tileset source of /dev/stdin" "source.tmx" "\"/dev/stdin\"" "is not a regular file")
+                  (list "a tileset source that is a FIFO" "source.tmx" "pipe.tsx" "is not a regular file")
+                  (list "a map that is a FIFO" "pipe.tsx" "the map is not a regular file")
+                  (list "a map path with a NUL byte" "the map has a NUL byte in its name"))))
