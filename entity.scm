@@ -185,7 +185,11 @@
 
   (define (entity-skips-pipeline? e step)
     (let ((skips (entity-ref e #:skip-pipelines #f)))
-      (and skips (memq step skips) #t)))
+      (cond ((pair? skips) (and (memq step skips) #t))
+            ((or (not skips) (null? skips)) #f)
+            (else (error 'downstroke
+                         (sprintf "entity ~a: #:skip-pipelines is ~s, expected a list of step symbols such as (gravity)"
+                                  (entity-label e) skips))))))
 
   ;; A step of the per-frame pipeline. It returns the entity unchanged when
   ;; the guard is false or the entity lists skip-symbol in #:skip-pipelines.

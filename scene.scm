@@ -53,9 +53,34 @@
       (error 'make-scene "collision-mode: must be 'discrete or 'swept" mode))
     mode)
 
-  (define (check-entities entities)
+  ;; A keyword alist, ((#:x . 0) ...): its pairs have keyword cars and
+  ;; some cdr is not a list (an entity plist in a list always has one).
+  (define (one-alist? es)
+    (let loop ((es es) (dotted? #f))
+      (cond ((null? es) dotted?)
+            ((and (pair? (car es)) (keyword? (caar es)))
+             (loop (cdr es) (or dotted? (not (pair? (cdar es))))))
+            (else #f))))
+
+  ;; One entity given where a list of them belongs is the usual slip:
+  ;; (make-scene entities: (list #:type 'player ...)) reads a plist as a
+  ;; list of a keyword, a symbol ... and would fail deep inside.
+  (define (check-entities entities #!optional (who 'make-scene))
     (unless (list? entities)
-      (error 'make-scene "entities: must be a list of entities" entities))
+      (error who (sprintf "~a: entities: must be a list of entities, got ~s" who entities)))
+    (when (and (pair? entities)
+               (or (keyword? (car entities))     ; a plist
+                   (one-alist? entities)))
+      (error who (sprintf "~a: entities: is one entity, not a list of them (wrap it: (list e))" who)))
+    (let loop ((es entities) (i 0))
+      (when (pair? es)
+        (unless (or (null? (car es))
+                    (and (pair? (car es))
+                         (or (keyword? (caar es))
+                             (and (pair? (caar es)) (keyword? (car (caar es)))))))
+          (error who (sprintf "~a: entities: element ~a is not an entity (a plist or keyword alist): ~s"
+                              who i (car es))))
+        (loop (cdr es) (+ i 1))))
     ;; alists come back as they are, so the list is shared, not copied
     (map/shared as-entity entities))
 
@@ -90,7 +115,7 @@
                         (tileset-texture unset) (camera unset) (camera-target unset)
                         (background unset) (engine-update unset) (collision-mode unset))
     (let ((pick (lambda (new old) (if (given? new) new old))))
-      (%make-scene (if (given? entities) (check-entities entities) (scene-entities s))
+      (%make-scene (if (given? entities) (check-entities entities (quote update-scene)) (scene-entities s))
                    (pick tilemap (scene-tilemap s))
                    (pick tileset (scene-tileset s))
                    (pick tileset-texture (scene-tileset-texture s))

@@ -56,3 +56,27 @@
                   (list "a tileset source that is a FIFO" "source.tmx" "pipe.tsx" "is not a regular file")
                   (list "a map that is a FIFO" "pipe.tsx" "the map is not a regular file")
                   (list "a map path with a NUL byte" "the map has a NUL byte in its name"))))
+
+;; Mistakes that once failed inside the library ([memq] bad argument type,
+;; [cddr] bad argument type) and now say what is wrong.
+(import (downstroke entity) (downstroke scene) (downstroke pipeline))
+(define (ho-message thunk)
+  (handle-exceptions e ((condition-property-accessor 'exn 'message "") e) (thunk) "no error"))
+(test-group "hostile: errors name the entity, the keyword and the value"
+  (test "#:skip-pipelines as a string"
+        "entity box: #:skip-pipelines is \"gravity\", expected a list of step symbols such as (gravity)"
+        (ho-message (lambda () (engine-pipeline (make-scene entities: (list (list #:type 'box #:x 0 #:y 0
+                                                                                  #:skip-pipelines "gravity")))
+                                                16))))
+  (test "one plist entity given as entities:"
+        "make-scene: entities: is one entity, not a list of them (wrap it: (list e))"
+        (ho-message (lambda () (make-scene entities: (list #:type 'player #:x 0)))))
+  (test "one alist entity given to update-scene"
+        "update-scene: entities: is one entity, not a list of them (wrap it: (list e))"
+        (ho-message (lambda () (update-scene (make-scene) entities: (list (cons #:x 1) (cons #:y 2))))))
+  (test "a list with something that is no entity"
+        "make-scene: entities: element 1 is not an entity (a plist or keyword alist): 5"
+        (ho-message (lambda () (make-scene entities: (list (list #:type 'a) 5)))))
+  (test "a list of plist entities is still fine" 2
+        (length (scene-entities (make-scene entities: (list (list #:type 'a #:points '((1 . 2)))
+                                                            (list #:type 'b)))))))
