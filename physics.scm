@@ -79,6 +79,28 @@
              (let () body ...)
              (reject-numbers e (list key ...) (list var ...)))))))
 
+;; a + b for the step that moves key: a sum of finite numbers that
+  ;; overflows to an infinity is that step's error, naming the entity and
+  ;; the key, not a failure later in a tile lookup.
+  (define-inline (sum e key a b)
+    (let ((v (+ a b))) (if (plain-number? v) v (overflowed e key a b))))
+
+  (define (overflowed e key a b)
+    (error 'downstroke
+           (sprintf "entity ~a: ~s overflowed to ~s (~s + ~s); positions and velocities must stay finite"
+                    (entity-label e) key (+ a b) a b)))
+
+  ;; The first sum of the motion steps that overflowed, reported as that
+  ;; step reports it (the fused passes check their sums once, at the end,
+  ;; so that the common case has no branch per sum). vy is the vertical
+  ;; velocity after gravity, the one velocity-y adds.
+  (define (motion-overflowed e grav accelerate? vy0 ay x vx y vy)
+    (let* ((vy1 (if accelerate? (+ vy0 ay) vy0)))
+      (cond ((and accelerate? (not (plain-number? vy1))) (overflowed e #:vy vy0 ay))
+            ((and grav (not (plain-number? (+ vy1 *gravity*)))) (overflowed e #:vy vy1 *gravity*))
+            ((not (plain-number? (+ x vx))) (overflowed e #:x x vx))
+            (else (overflowed e #:y y vy)))))
+
   ;; The error check-entity-number raises for the first bad value.
   (define (reject-numbers e keys values)
     (for-each (lambda (key v) (check-entity-number e key v)) keys values)
@@ -214,17 +236,17 @@
     (let ((ay (num entity #:ay)))
       (if (and (eq? ay 0) (assq #:ay entity))
           entity                        ; nothing to consume: no new entity
-          (entity-set (entity-set entity #:vy (+ (num entity #:vy) ay)) #:ay 0))))
+          (entity-set (entity-set entity #:vy (sum entity #:vy (num entity #:vy) ay)) #:ay 0))))
 
   (define-pipeline (apply-gravity gravity) (scene entity dt)
     guard: (entity-ref entity #:gravity? #f)
-    (entity-set entity #:vy (+ (num entity #:vy) *gravity*)))
+    (entity-set entity #:vy (sum entity #:vy (num entity #:vy) *gravity*)))
 
   (define-pipeline (apply-velocity-x velocity-x) (scene entity dt)
-    (entity-set entity #:x (+ (num entity #:x) (num entity #:vx))))
+    (entity-set entity #:x (sum entity #:x (num entity #:x) (num entity #:vx))))
 
   (define-pipeline (apply-velocity-y velocity-y) (scene entity dt)
-    (entity-set entity #:y (+ (num entity #:y) (num entity #:vy))))
+    (entity-set entity #:y (sum entity #:y (num entity #:y) (num entity #:vy))))
 
   ;; Which tile step an entity gets: its own #:collision-mode, else the
   ;; scene's.
@@ -349,24 +371,28 @@
                    (vx (read vxp #:vx))
                    (x1 (+ x0 vx))
                    (swept (and tm (swept-mode? scene e (and modep (cdr modep)))))
-                   (x-stop (and tm (not (zero? vx))
+                   (x-stop (and tm (not (zero? vx)) (plain-number? x1)
                                 (tile-stop vx x1 (read wp #:width) (read yp #:y) (read hp #:height)
                                            swept (tilemap-tile-width tm) (tilemap-tile-height tm)
                                            (column-grid tm))))
                    (x2 (or x-stop x1))
                    (vy (if grav vy2 (read vyp #:vy)))
-                   (y1 (+ (read yp #:y) vy))
-                   (y-stop (and tm (not (zero? vy))
+                   (y0 (read yp #:y))
+                   (y1 (+ y0 vy))
+                   (y-stop (and tm (not (zero? vy)) (plain-number? y1) (plain-number? x1)
                                 (tile-stop vy y1 (read hp #:height) x2 (read wp #:width)
                                            swept (tilemap-tile-height tm) (tilemap-tile-width tm)
                                            (row-grid tm)))))
-              (rewrite-motion e grav
-                              xp (final xp x2)
-                              yp (final yp (or y-stop y1))
-                              vxp (if x-stop (final vxp 0) 'keep)
-                              vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy2)) (else 'keep))
-                              ayp (if accelerate? (final ayp 0) 'keep)
-                              #f 'keep))))))
+              (if (eq? 1 (fxand* (if grav (plain-number-bit vy2) 1) (plain-number-bit x1)
+                                 (plain-number-bit y1)))
+                  (rewrite-motion e grav
+                                  xp (final xp x2)
+                                  yp (final yp (or y-stop y1))
+                                  vxp (if x-stop (final vxp 0) 'keep)
+                                  vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy2)) (else 'keep))
+                                  ayp (if accelerate? (final ayp 0) 'keep)
+                                  #f 'keep)
+                  (motion-overflowed e grav accelerate? vy0 ay x0 vx y0 vy)))))))
 
   ;; general-motion in a scene without a map, for an entity without skips:
   ;; acceleration, gravity and velocity only, given the pairs the caller
@@ -380,14 +406,18 @@
                          (plain-number-bit x) (plain-number-bit vx) (plain-number-bit y)))
           (let* ((accelerate? (and grav (not (and (eq? ay 0) ayp))))
                  (vy1 (if accelerate? (+ vy ay) vy))
-                 (vy2 (if grav (+ vy1 *gravity*) vy)))
-            (rewrite-motion e grav
-                            xp (final xp (+ x vx))
-                            yp (final yp (+ y vy2))
-                            vxp 'keep
-                            vyp (if grav (final vyp vy2) 'keep)
-                            ayp (if accelerate? (final ayp 0) 'keep)
-                            #f 'keep))
+                 (vy2 (if grav (+ vy1 *gravity*) vy))
+                 (x1 (+ x vx))
+                 (y1 (+ y vy2)))
+            (if (eq? 1 (fxand* (plain-number-bit vy2) (plain-number-bit x1) (plain-number-bit y1)))
+                (rewrite-motion e grav
+                                xp (final xp x1)
+                                yp (final yp y1)
+                                vxp 'keep
+                                vyp (if grav (final vyp vy2) 'keep)
+                                ayp (if accelerate? (final ayp 0) 'keep)
+                                #f 'keep)
+                (motion-overflowed e grav accelerate? vy ay x vx y vy2)))
           (if grav
               (reject-numbers e '(#:ay #:vy #:x #:vx #:y) (list ay vy x vx y))
               (reject-numbers e '(#:x #:vx #:vy #:y) (list x vx vy y))))))

@@ -67,21 +67,13 @@
   ;; list of a keyword, a symbol ... and would fail deep inside.
   (define (check-entities entities #!optional (who 'make-scene))
     (unless (list? entities)
-      (error who (sprintf "~a: entities: must be a list of entities, got ~s" who entities)))
+      (error (sprintf "~a: entities: must be a list of entities, got ~s" who entities)))
     (when (and (pair? entities)
                (or (keyword? (car entities))     ; a plist
                    (one-alist? entities)))
-      (error who (sprintf "~a: entities: is one entity, not a list of them (wrap it: (list e))" who)))
-    (let loop ((es entities) (i 0))
-      (when (pair? es)
-        (unless (or (null? (car es))
-                    (and (pair? (car es))
-                         (or (keyword? (caar es))
-                             (and (pair? (caar es)) (keyword? (car (caar es)))))))
-          (error who (sprintf "~a: entities: element ~a is not an entity (a plist or keyword alist): ~s"
-                              who i (car es))))
-        (loop (cdr es) (+ i 1))))
-    ;; alists come back as they are, so the list is shared, not copied
+      (error (sprintf "~a: entities: is one entity, not a list of them (wrap it: (list e))" who)))
+    ;; alists come back as they are, so the list is shared, not copied;
+    ;; as-entity names an element that is no entity
     (map/shared as-entity entities))
 
   ;; How tile collisions are resolved unless a scene or an entity says

@@ -75,8 +75,30 @@
         "update-scene: entities: is one entity, not a list of them (wrap it: (list e))"
         (ho-message (lambda () (update-scene (make-scene) entities: (list (cons #:x 1) (cons #:y 2))))))
   (test "a list with something that is no entity"
-        "make-scene: entities: element 1 is not an entity (a plist or keyword alist): 5"
+        "not an entity (plist or keyword alist)"
         (ho-message (lambda () (make-scene entities: (list (list #:type 'a) 5)))))
   (test "a list of plist entities is still fine" 2
         (length (scene-entities (make-scene entities: (list (list #:type 'a #:points '((1 . 2)))
                                                             (list #:type 'b)))))))
+
+(test-group "hostile: a sum that overflows to infinity is the step's error"
+  (import (downstroke tilemap))
+  (define (box . more) (append (list #:type 'box #:x 1e308 #:y 0 #:width 8 #:height 8 #:vx 1e308) more))
+  (define expected "entity box: #:x overflowed to +inf.0 (1e+308 + 1e+308); positions and velocities must stay finite")
+  (test "without a map" expected
+        (ho-message (lambda () (engine-pipeline (make-scene entities: (list (box))) 16))))
+  (test "with a map" expected
+        (ho-message (lambda () (engine-pipeline (make-scene tilemap: (list->tilemap '((0 0)))
+                                                            entities: (list (box))) 16))))
+  (test "with a map, moving on both axes" expected
+        (ho-message (lambda () (engine-pipeline (make-scene tilemap: (list->tilemap '((0 0)))
+                                                            entities: (list (box #:vy 3.5))) 16))))
+  (test "the readable pipeline says the same" expected
+        (ho-message (lambda () (contract-pipeline (make-scene tilemap: (list->tilemap '((0 0)))
+                                                              entities: (list (box))) 16))))
+  (test "gravity pushing vy over the edge"
+        "entity box: #:vy overflowed to +inf.0 (1.79769313486232e+308 + 1e+308); positions and velocities must stay finite"
+        (ho-message (lambda () (engine-pipeline
+                                (make-scene entities: (list (list #:type 'box #:x 0 #:y 0 #:vy 1.7976931348623157e308
+                                                                  #:ay 1e308 #:gravity? #t)))
+                                16)))))
