@@ -542,12 +542,32 @@ EOF
        C_return(which ? SDL_RenderDrawRect((SDL_Renderer*)r, whole ? NULL : &rc)
                       : SDL_RenderFillRect((SDL_Renderer*)r, whole ? NULL : &rc));"))
 
+;; Destination rects reach SDL as C ints, which would wrap a coordinate
+  ;; past 2^31 back onto the screen (an entity at x = 2^32 + 10 drawn at
+  ;; 10) and cannot hold a bignum at all. Every destination is therefore
+  ;; cut to +-2^24 px, far outside any window even when scaled: edges
+  ;; beyond it are moved to it, and a rect wholly beyond it is not drawn.
+  ;; (values x y w h), or #f to draw nothing.
+  (define dest-limit (expt 2 24))
+
+  (define (dest-span p size)
+    (let ((lo (max p (- dest-limit))) (hi (min (+ p size) dest-limit)))
+      (and (< lo hi) (cons (exact-int lo) (exact-int hi)))))
+
+  (define (exact-int v) (let ((i (floor v))) (if (exact? i) i (inexact->exact i))))
+
+  (define (clip-dest rect)
+    (let ((sx (dest-span (rect-x rect) (rect-w rect)))
+          (sy (dest-span (rect-y rect) (rect-h rect))))
+      (and sx sy (list (car sx) (car sy) (- (cdr sx) (car sx)) (- (cdr sy) (car sy))))))
+
   (define (do-rect who call which r rect)
     (let ((p (live-renderer who r)))
-      (check-status who call
-                    (if rect
-                        (rect-op p which #f (rect-x rect) (rect-y rect) (rect-w rect) (rect-h rect))
-                        (rect-op p which #t 0 0 0 0)))))
+      (if rect
+          (let ((d (clip-dest rect)))
+            (when d
+              (check-status who call (rect-op p which #f (car d) (cadr d) (caddr d) (cadddr d)))))
+          (check-status who call (rect-op p which #t 0 0 0 0)))))
 
   ;; rect: a rect, or #f for the whole target.
   (define (render-fill-rect! r rect) (do-rect 'render-fill-rect! "SDL_RenderFillRect" 0 r rect))
@@ -566,18 +586,19 @@ EOF
           (tp (live-texture 'render-copy! t)))
       (unless (eq? (texture-renderer t) r)
         (error 'render-copy! "the texture belongs to another renderer" t))
-      (check-status
-       'render-copy! (if (and (null? flip) (zero? angle)) "SDL_RenderCopy" "SDL_RenderCopyEx")
-       (sdl-copy rp tp
-                 (and src #t)
-                 (if src (rect-x src) 0) (if src (rect-y src) 0)
-                 (if src (rect-w src) 0) (if src (rect-h src) 0)
-                 (and dst #t)
-                 (if dst (rect-x dst) 0) (if dst (rect-y dst) 0)
-                 (if dst (rect-w dst) 0) (if dst (rect-h dst) 0)
-                 (exact->inexact angle)
-                 (and (memq 'horizontal flip) #t)
-                 (and (memq 'vertical flip) #t)))))
+      (let ((d (if dst (clip-dest dst) '(0 0 0 0))))
+        (when d
+          (check-status
+           'render-copy! (if (and (null? flip) (zero? angle)) "SDL_RenderCopy" "SDL_RenderCopyEx")
+           (sdl-copy rp tp
+                     (and src #t)
+                     (if src (rect-x src) 0) (if src (rect-y src) 0)
+                     (if src (rect-w src) 0) (if src (rect-h src) 0)
+                     (and dst #t)
+                     (car d) (cadr d) (caddr d) (cadddr d)
+                     (exact->inexact angle)
+                     (and (memq 'horizontal flip) #t)
+                     (and (memq 'vertical flip) #t)))))))
 
   (define (render-present! r)
     ((foreign-lambda void "SDL_RenderPresent" c-pointer) (live-renderer 'render-present! r)))

@@ -23,6 +23,28 @@
 
 (init!)
 
+(test-group "sdl2: destinations beyond the C int range are clipped, never wrapped"
+  (let* ((s (create-rgba-surface! 8 6))
+         (r (create-software-renderer! s))
+         (count (lambda ()
+                  (let ((f (sdl-frame r)))
+                    (let loop ((x 0) (y 0) (n 0))
+                      (cond ((= y 6) n)
+                            ((= x 8) (loop 0 (+ y 1) n))
+                            (else (loop (+ x 1) y (if (equal? (sdl-pixel f x y) '(200 0 0 255)) (+ n 1) n))))))))
+         (clear! (lambda () (render-draw-color-set! r 0 0 0) (render-clear! r)
+                         (render-draw-color-set! r 200 0 0))))
+    (clear!)
+    (render-fill-rect! r (make-rect (+ (expt 2 32) 2) 1 3 2))
+    (test "x = 2^32 + 2 draws nothing (a C int would wrap it to 2)" 0 (count))
+    (render-fill-rect! r (make-rect (expt 2 70) (- (expt 2 70)) 3 2))
+    (test "bignum coordinates are no error and draw nothing" 0 (count))
+    (render-fill-rect! r (make-rect (- (expt 2 40)) (- (expt 2 40)) (expt 2 41) (expt 2 41)))
+    (test "a rect from -2^40 to 2^40 still covers the whole target" 48 (count))
+    (clear!)
+    (render-fill-rect! r (make-rect -2 -1 4 3))
+    (test "ordinary clipping at the edges is SDL's, as before" 4 (count))))
+
 (test-group "sdl2: software renderer on a surface"
   (let* ((s (create-rgba-surface! 8 6))
          (r (create-software-renderer! s)))
