@@ -91,13 +91,13 @@
    ;; constructors for the file loaders ((downstroke tmx)); games build maps
    ;; with make-tilemap, list->tilemap and make-layer
    %make-layer make-image make-tile make-tileset make-map-object tileset-tile-table
-   tileset-tile-ids gid-mask)
+   tileset-tile-ids gid-mask check-integer)
 
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
-          (chicken string) (chicken file) srfi-4
+          (chicken string) (chicken file) (only (chicken file posix) regular-file?) srfi-4
           (only (downstroke util) filter append-map any list-min list-max string-concatenate
                 make-hash-table hash-table-ref/default hash-table-set!
                 hash-table-exists?))
@@ -563,8 +563,6 @@
       (make-tileset first-gid name "" #f tile-width tile-height spacing margin
                     tile-count columns (make-image (normalize-pathname image) #f #f #f)
                     0 0 'unspecified #f '() tiles)))
-
-  (define (regular-file? path) (and (file-exists? path) (not (directory-exists? path))))
 
   (define (check-integer who prefix key v minimum)
     (unless (and (exact-integer? v) (>= v minimum))

@@ -76,7 +76,7 @@
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken foreign) (chicken condition)
-          (chicken gc) (chicken format) (chicken bitwise) srfi-4)
+          (chicken gc) (chicken format) (chicken bitwise) (chicken fixnum) srfi-4)
 
   (foreign-declare #<<EOF
 #include <SDL.h>
@@ -561,13 +561,24 @@ EOF
           (sy (dest-span (rect-y rect) (rect-h rect))))
       (and sx sy (list (car sx) (car sy) (- (cdr sx) (car sx)) (- (cdr sy) (car sy))))))
 
+  ;; The usual rect: fixnum edges inside the limit, passed on as it is
+  ;; (drawing a map makes hundreds of these a frame; only the rest are cut).
+  (define (dest-in-range? rect)
+    (let ((x (rect-x rect)) (y (rect-y rect)) (w (rect-w rect)) (h (rect-h rect)))
+      (and (fixnum? x) (fixnum? y) (fixnum? w) (fixnum? h)
+           (fx> w 0) (fx> h 0)
+           (fx< (fx- 0 dest-limit) x) (fx< (fx+ x w) dest-limit)
+           (fx< (fx- 0 dest-limit) y) (fx< (fx+ y h) dest-limit))))
+
   (define (do-rect who call which r rect)
     (let ((p (live-renderer who r)))
-      (if rect
-          (let ((d (clip-dest rect)))
-            (when d
-              (check-status who call (rect-op p which #f (car d) (cadr d) (caddr d) (cadddr d)))))
-          (check-status who call (rect-op p which #t 0 0 0 0)))))
+      (cond ((not rect) (check-status who call (rect-op p which #t 0 0 0 0)))
+            ((dest-in-range? rect)
+             (check-status who call (rect-op p which #f (rect-x rect) (rect-y rect)
+                                             (rect-w rect) (rect-h rect))))
+            ((clip-dest rect)
+             => (lambda (d)
+                  (check-status who call (rect-op p which #f (car d) (cadr d) (caddr d) (cadddr d))))))))
 
   ;; rect: a rect, or #f for the whole target.
   (define (render-fill-rect! r rect) (do-rect 'render-fill-rect! "SDL_RenderFillRect" 0 r rect))
@@ -586,19 +597,20 @@ EOF
           (tp (live-texture 'render-copy! t)))
       (unless (eq? (texture-renderer t) r)
         (error 'render-copy! "the texture belongs to another renderer" t))
-      (let ((d (if dst (clip-dest dst) '(0 0 0 0))))
-        (when d
-          (check-status
-           'render-copy! (if (and (null? flip) (zero? angle)) "SDL_RenderCopy" "SDL_RenderCopyEx")
-           (sdl-copy rp tp
-                     (and src #t)
-                     (if src (rect-x src) 0) (if src (rect-y src) 0)
-                     (if src (rect-w src) 0) (if src (rect-h src) 0)
-                     (and dst #t)
-                     (car d) (cadr d) (caddr d) (cadddr d)
-                     (exact->inexact angle)
-                     (and (memq 'horizontal flip) #t)
-                     (and (memq 'vertical flip) #t)))))))
+      (define (copy! x y w h)
+        (check-status
+         'render-copy! (if (and (null? flip) (zero? angle)) "SDL_RenderCopy" "SDL_RenderCopyEx")
+         (sdl-copy rp tp
+                   (and src #t)
+                   (if src (rect-x src) 0) (if src (rect-y src) 0)
+                   (if src (rect-w src) 0) (if src (rect-h src) 0)
+                   (and dst #t) x y w h
+                   (exact->inexact angle)
+                   (and (memq 'horizontal flip) #t)
+                   (and (memq 'vertical flip) #t))))
+      (cond ((not dst) (copy! 0 0 0 0))
+            ((dest-in-range? dst) (copy! (rect-x dst) (rect-y dst) (rect-w dst) (rect-h dst)))
+            ((clip-dest dst) => (lambda (d) (apply copy! d))))))
 
   (define (render-present! r)
     ((foreign-lambda void "SDL_RenderPresent" c-pointer) (live-renderer 'render-present! r)))

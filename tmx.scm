@@ -179,16 +179,10 @@
   ;; a regular file. A directory, a FIFO or /dev/stdin would block the
   ;; loader or fail in expat; a NUL byte cannot reach the system at all.
   (define (unreadable-file path)
-    (cond ((string-index* path #\x0) "has a NUL byte in its name")
+    (cond ((substring-index (string #\x0) path) "has a NUL byte in its name")
           ((not (file-exists? path)) "not found")
           ((not (posix-regular-file? path)) "is not a regular file (a directory, device or pipe)")
           (else #f)))
-
-  (define (string-index* s c)
-    (let loop ((i 0))
-      (cond ((= i (string-length s)) #f)
-            ((char=? (string-ref s i) c) i)
-            (else (loop (+ i 1))))))
 
   (define (regular-file? path) (not (unreadable-file path)))
 
@@ -976,9 +970,4 @@
                   (why (tmx-error path "the tileset ~a" why))))
           (let ((path (normalize-pathname path)))
             (parse-tileset path (read-root (cons path "tileset") path 'tileset)
-                           first-gid path))))))
-
-  ;; The loader's own integer check, worded as make-sheet-tileset's.
-  (define (check-integer who prefix key v minimum)
-    (unless (and (exact-integer? v) (>= v minimum))
-      (error who (sprintf "~a~a is ~s, expected an integer of at least ~a" prefix key v minimum)))))
+                           first-gid path)))))))

@@ -107,14 +107,6 @@
 
 (define (find ok? ls) (cond ((null? ls) #f) ((ok? (car ls)) (car ls)) (else (find ok? (cdr ls)))))
 
-;; The library as the suites see it, for the child processes: under
-;; chicken-install -test the repository path was extended in-process only.
-(define (docs-repository-path)
-  (string-intersperse (map (lambda (dir) (if (absolute-pathname? dir) dir
-                                              (normalize-pathname (make-pathname (current-directory) dir))))
-                           (repository-path))
-                      ":"))
-
 ;; Runs the code with `runner` (csi -q -s, or sh -e) from the repository
 ;; root; its output lines (stderr kept apart) and whether it exited with
 ;; status 0.
@@ -123,7 +115,7 @@
     (with-output-to-file file (lambda () (for-each (lambda (l) (display l) (newline)) code)))
     (let ((out (create-temporary-file ".out")))
       (let ((status (system (sprintf "cd .. && CHICKEN_REPOSITORY_PATH='~a' ~a ~a > ~a 2>~a.err"
-                                     (docs-repository-path) runner (qs file) (qs out) (qs out)))))
+                                     (absolute-repository-path) runner (qs file) (qs out) (qs out)))))
         (let ((lines (with-input-from-file out read-lines))
               (errors (with-input-from-file (string-append out ".err") read-string)))
           (unless (zero? status)

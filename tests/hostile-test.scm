@@ -8,16 +8,10 @@
 (import scheme (chicken base) (chicken io) (chicken string) (chicken format)
         (chicken pathname) (chicken process) (chicken condition) (downstroke test))
 
-(define (ho-repository-path)
-  (string-intersperse
-   (map (lambda (d) (if (absolute-pathname? d) d (normalize-pathname (make-pathname (current-directory) d))))
-        (repository-path))
-   ":"))
-
 (define ho-results
   (with-input-from-pipe
    (sprintf "CHICKEN_REPOSITORY_PATH=~a timeout 300 csi -q -s hostile-shapes.scm"
-            (qs (ho-repository-path)))
+            (qs (absolute-repository-path)))
    ;; whatever is not a datum (an error's trace) ends the reading
    (lambda () (let loop ((out '()))
                 (let ((x (handle-exceptions e #!eof (read))))

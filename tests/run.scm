@@ -21,7 +21,9 @@
 (import (chicken string) (chicken pathname) (chicken process)
         (chicken process-context posix) (chicken format))
 
-;; This process's module path, absolute, for the programs the suites start.
+;; This process's module path, absolute, for the programs the suites start
+;; (under chicken-install -n -test it was extended in-process only). The
+;; suites are loaded into this toplevel and use it too.
 (define (absolute-repository-path)
   (string-intersperse
    (map (lambda (dir) (if (absolute-pathname? dir) dir
