@@ -15,7 +15,7 @@
 ;;; Boxes much larger than a cell are kept aside and visited by everyone.
 
 (module (downstroke broadphase)
-  (visit-pairs-in-order)
+  (visit-pairs-in-order visit-near-pairs)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign))
 
@@ -205,6 +205,67 @@ EOF
           'large
           (vector cx0 cy0 cx1 cy1))))
 
+  (define (bucket-of cx cy mask)
+    (if (and (fixnum? cx) (fixnum? cy))
+        (fixnum-bucket cx cy mask)
+        (modulo (+ (* cx 73856093) (* cy 19349663)) (+ mask 1))))
+
+  ;; The cells #(cx0 cy0 cx1 cy1) of a box, or 'large.
+  (define (span-of-box x y w h size)
+    (let* ((span (make-vector 4 0))
+           (fast (fast-span! span x y w h size large-span)))
+      (cond ((eq? fast 1) span)
+            ((eq? fast 2) 'large)
+            (else (slow-span x y w h size)))))
+
+  (define (for-each-cell span mask proc)
+    (do ((cy (vector-ref span 1) (cell+1 cy))) ((cell> cy (vector-ref span 3)))
+      (do ((cx (vector-ref span 0) (cell+1 cx))) ((cell> cx (vector-ref span 2)))
+        (proc (bucket-of cx cy mask)))))
+
+  ;; Put box k in the bucket of every cell of its (not large) span.
+  (define (file-box! buckets mask k span)
+    (if (eq? (fixnum-span-bit span) 1)
+        ;; loops of fixnums, no closure per cell; they stop at the last
+        ;; cell, never stepping past the largest fixnum
+        (let ((cx0 (vector-ref span 0)) (cy0 (vector-ref span 1))
+              (cx1 (vector-ref span 2)) (cy1 (vector-ref span 3)))
+          (unless (or (fx> cx0 cx1) (fx> cy0 cy1))
+            (let rows ((cy cy0))
+              (let cols ((cx cx0))
+                (let ((b (fixnum-bucket cx cy mask)))
+                  (vector-set! buckets b (cons k (vector-ref buckets b))))
+                (unless (fx= cx cx1) (cols (fx+ cx 1))))
+              (unless (fx= cy cy1) (rows (fx+ cy 1))))))
+        (for-each-cell span mask (lambda (b) (vector-set! buckets b (cons k (vector-ref buckets b)))))))
+
+  ;; Add to the ascending `queue` every box after `after` in the large
+  ;; boxes or in a bucket of `span`, not yet stamped with p (and stamp it).
+  (define (gather-near p after span queue buckets large stamp mask buf)
+    (define (add-all ls queue)
+      (if (null? ls)
+          queue
+          (add-all (cdr ls)
+                   (let ((q (car ls)))
+                     (if (and (fx> q after) (not (fx= (vector-ref stamp q) p)))
+                         (begin (vector-set! stamp q p) (insert q queue))
+                         queue)))))
+    (let ((count (gather-cells! buf p after span buckets large stamp mask)))
+      (cond ((and (fx>= count 0) (null? queue))
+             (let build ((i (fx- count 1)) (out '()))
+               (if (fx< i 0) out (build (fx- i 1) (cons (vector-ref buf i) out)))))
+            ((fx>= count 0)
+             (let merge ((i 0) (queue queue))
+               (if (fx= i count) queue (merge (fx+ i 1) (insert (vector-ref buf i) queue)))))
+            (else
+             (let rows ((cy (vector-ref span 1)) (queue (add-all large queue)))
+               (if (cell> cy (vector-ref span 3))
+                   queue
+                   (let cols ((cx (vector-ref span 0)) (queue queue))
+                     (if (cell> cx (vector-ref span 2))
+                         (rows (cell+1 cy) queue)
+                         (cols (cell+1 cx) (add-all (vector-ref buckets (bucket-of cx cy mask)) queue))))))))))
+
   ;; n boxes numbered 0..n-1; (box k) returns the current (values x y w h);
   ;; (visit! p q) may move boxes p and q, and returns true when it did
   ;; (only then are their cells looked at again).
@@ -214,45 +275,21 @@ EOF
            (mask (- (vector-length buckets) 1))
            (spans (make-vector n #f))          ; #(cx0 cy0 cx1 cy1) or 'large
            (stamp (make-vector n -1)))
-      (define (bucket cx cy)
-        (if (and (fixnum? cx) (fixnum? cy))
-            (fixnum-bucket cx cy mask)
-            (modulo (+ (* cx 73856093) (* cy 19349663)) (+ mask 1))))
       (define (span-of k)
         (let-values (((x y w h) (box k)))
-          (let* ((span (make-vector 4 0))
-                 (fast (fast-span! span x y w h size large-span)))
-            (cond ((eq? fast 1) span)
-                  ((eq? fast 2) 'large)
-                  (else (slow-span x y w h size))))))
-      (define (for-each-cell span proc)
-        (do ((cy (vector-ref span 1) (cell+1 cy))) ((cell> cy (vector-ref span 3)))
-          (do ((cx (vector-ref span 0) (cell+1 cx))) ((cell> cx (vector-ref span 2)))
-            (proc (bucket cx cy)))))
+          (span-of-box x y w h size)))
       (define large '())                      ; indices, ascending
       (define (register! k span)
         (vector-set! spans k span)
-        (cond ((eq? span 'large) (set! large (insert k large)))
-              ((eq? (fixnum-span-bit span) 1)
-               ;; loops of fixnums, no closure per cell; they stop at the
-               ;; last cell, never stepping past the largest fixnum
-               (let ((cx0 (vector-ref span 0)) (cy0 (vector-ref span 1))
-                     (cx1 (vector-ref span 2)) (cy1 (vector-ref span 3)))
-                 (unless (or (fx> cx0 cx1) (fx> cy0 cy1))
-                   (let rows ((cy cy0))
-                     (let cols ((cx cx0))
-                       (let ((b (fixnum-bucket cx cy mask)))
-                         (vector-set! buckets b (cons k (vector-ref buckets b))))
-                       (unless (fx= cx cx1) (cols (fx+ cx 1))))
-                     (unless (fx= cy cy1) (rows (fx+ cy 1)))))))
-              (else
-               (for-each-cell span (lambda (b) (vector-set! buckets b (cons k (vector-ref buckets b))))))))
+        (if (eq? span 'large)
+            (set! large (insert k large))
+            (file-box! buckets mask k span)))
       (define (unregister! k)
         (let ((span (vector-ref spans k)))
           (cond ((eq? span 'large) (set! large (remove-one k large)))
                 ((eq? (fixnum-span-bit span) 1) (unfile! k span buckets mask))
                 (else
-                 (for-each-cell span (lambda (b) (vector-set! buckets b (remove-one k (vector-ref buckets b)))))))))
+                 (for-each-cell span mask (lambda (b) (vector-set! buckets b (remove-one k (vector-ref buckets b)))))))))
       ;; Re-file box k if its cells changed; #t when they did. Most visits
       ;; move a box within its cells.
       (define (refresh! k)
@@ -264,31 +301,7 @@ EOF
       ;; with p, or large, not yet queued in row p.
       (define buf (make-vector n 0))
       (define (gather p after queue)
-        (let ((count (gather-cells! buf p after (vector-ref spans p) buckets large stamp mask)))
-          (cond ((fx< count 0) (slow-gather p after queue))
-                ((null? queue)
-                 (let build ((i (fx- count 1)) (out '()))
-                   (if (fx< i 0) out (build (fx- i 1) (cons (vector-ref buf i) out)))))
-                (else
-                 (let merge ((i 0) (queue queue))
-                   (if (fx= i count) queue (merge (fx+ i 1) (insert (vector-ref buf i) queue))))))))
-      (define (slow-gather p after queue)
-        (define (add-all ls queue)
-          (if (null? ls)
-              queue
-              (add-all (cdr ls)
-                       (let ((q (car ls)))
-                         (if (and (fx> q after) (not (fx= (vector-ref stamp q) p)))
-                             (begin (vector-set! stamp q p) (insert q queue))
-                             queue)))))
-        (let ((span (vector-ref spans p)))
-          (let rows ((cy (vector-ref span 1)) (queue (add-all large queue)))
-            (if (cell> cy (vector-ref span 3))
-                queue
-                (let cols ((cx (vector-ref span 0)) (queue queue))
-                  (if (cell> cx (vector-ref span 2))
-                      (rows (cell+1 cy) queue)
-                      (cols (cell+1 cx) (add-all (vector-ref buckets (bucket cx cy)) queue))))))))
+        (gather-near p after (vector-ref spans p) queue buckets large stamp mask buf))
       (do ((k 0 (fx+ k 1))) ((fx= k n)) (register! k (span-of k)))
       (do ((p 0 (fx+ p 1))) ((fx= p n))
         (if (eq? (vector-ref spans p) 'large)
@@ -308,6 +321,33 @@ EOF
                               (let tail ((r (- n 1)) (out '()))
                                 (if (fx<= r q) out (tail (fx- r 1) (cons r out)))))
                              (else (gather p q (cdr queue))))))))))))
+
+  ;; Boxes that do not move: m query boxes, (query j) giving (values x y w
+  ;; h), against n filed boxes, (box k). Calls (found j k) for every filed
+  ;; box sharing a cell with query j (a superset of those it overlaps), j
+  ;; ascending and, for each j, k ascending, each pair once. The cost grows
+  ;; with the boxes filed and asked and with the pairs that are close.
+  (define (visit-near-pairs m query n box found)
+    (when (fx> n 0)
+      (let* ((size (cell-size n box))
+             (buckets (make-vector (bucket-count n) '()))
+             (mask (- (vector-length buckets) 1))
+             (stamp (make-vector n -1))
+             (buf (make-vector n 0))
+             (large (let file ((k (fx- n 1)) (large '()))
+                      (if (fx< k 0)
+                          large
+                          (let ((span (let-values (((x y w h) (box k))) (span-of-box x y w h size))))
+                            (if (eq? span 'large)
+                                (file (fx- k 1) (cons k large))
+                                (begin (file-box! buckets mask k span)
+                                       (file (fx- k 1) large))))))))
+        (do ((j 0 (fx+ j 1))) ((fx= j m))
+          (let ((span (let-values (((x y w h) (query j))) (span-of-box x y w h size))))
+            (if (eq? span 'large)
+                (do ((k 0 (fx+ k 1))) ((fx= k n)) (found j k))
+                (for-each (lambda (k) (found j k))
+                          (gather-near j -1 span '() buckets large stamp mask buf))))))))
 
   ;; Cells about twice the mean box size keep a few boxes per cell.
   (define (cell-size n box)

@@ -20,22 +20,34 @@ static long ds_floor_div(long a, long d) { return a >= 0 ? a / d : (a + 1) / d -
 static long ds_min(long a, long b) { return a < b ? a : b; }
 static long ds_max(long a, long b) { return a > b ? a : b; }
 
-/* tile-stop: where a body that moved by v (not 0) to pos stops on one
-   axis, or 0 when no solid line is in its way. Cell (line, cell) of the
-   grid is byte line*ls + cell*cs, both counted from the map's origin. */
-static int ds_tile_stop(long v, long pos, long size, long across, long across_size, int swept,
-                        long tile, long tile_across, const unsigned char *bytes,
+/* A position is n/d: a small fixnum (d = 1) or an exact rational of small
+   fixnums in lowest terms. The cells of a span [n/d, n/d + size) on tiles
+   of `tile` px: floor(n / (d tile)) to ceil((n + size d) / (d tile)) - 1,
+   which is floor((n + size d - 1) / (d tile)): tile-stop's span-first and
+   span-last for integers and rationals alike. */
+static long ds_first(long n, long d, long tile) { return ds_floor_div(n, d * tile); }
+static long ds_last(long n, long d, long size, long tile) {
+  return ds_floor_div(n + size * d - 1, d * tile);
+}
+
+/* tile-stop: where a body that moved by v (not 0) to pos = pn/pd stops on
+   one axis, or 0 when no solid line is in its way; its span on the other
+   axis is an/ad .. an/ad + across_size. Cell (line, cell) of the grid is
+   byte line*ls + cell*cs, both counted from the map's origin. A stop is
+   always a whole pixel. */
+static int ds_tile_stop(long v, long pn, long pd, long size, long an, long ad, long across_size,
+                        int swept, long tile, long tile_across, const unsigned char *bytes,
                         long ls, long cs, long line_origin, long cell_origin,
                         long line_count, long cell_count, long *stop)
 {
   int forward = v > 0;
-  long l0 = ds_floor_div(pos, tile), l1 = ds_floor_div(pos + size - 1, tile);
-  long lo = ds_max(ds_floor_div(across, tile_across) - cell_origin, 0);
-  long hi = ds_min(ds_floor_div(across + across_size - 1, tile_across) - cell_origin,
-                   cell_count - 1);
+  long l0 = ds_first(pn, pd, tile), l1 = ds_last(pn, pd, size, tile);
+  long lo = ds_max(ds_first(an, ad, tile_across) - cell_origin, 0);
+  long hi = ds_min(ds_last(an, ad, across_size, tile_across) - cell_origin, cell_count - 1);
   long from = forward ? l0 : l1, to = forward ? l1 : l0, line, cell;
   if (swept) {      /* from the line the leading edge was in before the move */
-    long s0 = ds_floor_div(pos - v, tile), s1 = ds_floor_div(pos - v + size - 1, tile);
+    long sn = pn - v * pd;
+    long s0 = ds_first(sn, pd, tile), s1 = ds_last(sn, pd, size, tile);
     from = forward ? ds_min(ds_max(s0, s1), l0) : ds_max(ds_min(s0, s1), l1);
   }
   from -= line_origin;
@@ -65,50 +77,87 @@ static int ds_solid(const unsigned char *bytes, long cols, long rows, long col0,
 /* map is #(cols rows col0 row0 tile-width tile-height). */
 /* Fixnums below this stay fixnums, and fit a long, through the sums below:
    2^40 on 64-bit CHICKEN (62-bit fixnums), 2^27 on 32-bit (30-bit). */
+/* A rational position's denominator stays below DS_DENOMINATORS, so that
+   n + v d and d * tile stay within 2^61 (no rationals on 32-bit). */
 #ifdef C_SIXTY_FOUR
 # define DS_LIMIT (1L << 40)
+# define DS_DENOMINATORS (1L << 20)
 #else
 # define DS_LIMIT (1L << 27)
+# define DS_DENOMINATORS 2
 #endif
 #define DS_SMALL(o) (C_truep(C_fixnump(o)) && C_unfix(o) < DS_LIMIT && C_unfix(o) > -DS_LIMIT)
 #define DS_SIZE(o) (C_truep(C_fixnump(o)) && C_unfix(o) >= 0 && C_unfix(o) < DS_LIMIT)
 
-/* -1 when this entity is not for this code (a number that is not a small
-   fixnum, a non-empty #:skip-pipelines, an unknown mode: DS_NOT_HERE), else
-   the keys to write. */
+/* A position the kernel takes, as *n / *d: a small fixnum, or an exact
+   rational of a small numerator and a denominator below DS_DENOMINATORS
+   (bodies pushed apart by halves, quarter-pixel starts). */
+static int ds_position(C_word o, long *n, long *d) {
+  if (DS_SMALL(o)) { *n = C_unfix(o); *d = 1; return 1; }
+  if (!C_immediatep(o) && C_block_header(o) == C_RATNUM_TAG) {
+    C_word num = C_block_item(o, 0), den = C_block_item(o, 1);
+    if (DS_SMALL(num) && DS_SIZE(den) && C_unfix(den) < DS_DENOMINATORS) {
+      *n = C_unfix(num);
+      *d = C_unfix(den);
+      return 1;
+    }
+  }
+  return 0;
+}
+
+/* -1 when this entity is not for this code (a number the kernel does not
+   take, a non-empty #:skip-pipelines, an unknown mode: DS_NOT_HERE), else
+   the keys to write. Velocities are fixnums, so a rational position keeps
+   its denominator (n/d + v = (n + v d)/d, still in lowest terms) until a
+   tile stops it on a whole pixel. */
 static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word map,
                                C_word flags_, C_word gravity_, C_word skips,
                                C_word x_, C_word y_, C_word w_, C_word h_,
                                C_word vx_, C_word vy_, C_word ay_, C_word on)
 {
   long flags = C_unfix(flags_), g = C_unfix(gravity_);
+  long xn, xd, yn, yd;
   if ((flags & DS_NOT_HERE) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST) ||
-      !(DS_SMALL(x_) && DS_SMALL(y_) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
+      !(ds_position(x_, &xn, &xd) && ds_position(y_, &yn, &yd) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
         DS_SIZE(w_) && DS_SIZE(h_) && (!(flags & DS_GRAVITY) || DS_SMALL(ay_))))
     return C_fix(-1);
-  long x = C_unfix(x_), y = C_unfix(y_), w = C_unfix(w_), h = C_unfix(h_);
+  long w = C_unfix(w_), h = C_unfix(h_);
   long vx = C_unfix(vx_), vy0 = C_unfix(vy_), ay = C_unfix(ay_);
   long cols = C_unfix(C_block_item(map, 0)), rows = C_unfix(C_block_item(map, 1));
   long col0 = C_unfix(C_block_item(map, 2)), row0 = C_unfix(C_block_item(map, 3));
   long tw = C_unfix(C_block_item(map, 4)), th = C_unfix(C_block_item(map, 5));
   int has_map = flags & DS_HAS_MAP, grav = flags & DS_GRAVITY, swept = (flags & DS_SWEPT) != 0;
+  if ((xd > 1 || yd > 1) && (tw >= DS_DENOMINATORS || th >= DS_DENOMINATORS))
+    return C_fix(-1);                  /* d * tile could overflow */
   int accelerate = grav && !(ay == 0 && (flags & DS_HAS_AY));
   long vy = grav ? (accelerate ? vy0 + ay : vy0) + g : vy0;
-  long x2 = x + vx, y2, stop;
+  long x2n = xn + vx * xd, x2d = xd, y2n, y2d = yd, stop;
   int x_stopped = 0, y_stopped = 0, writes = 0;
   if (has_map && vx != 0 &&
-      ds_tile_stop(vx, x2, w, y, h, swept, tw, th, bytes, 1, cols, col0, row0, cols, rows, &stop)) {
+      ds_tile_stop(vx, x2n, x2d, w, yn, yd, h, swept, tw, th, bytes, 1, cols, col0, row0, cols, rows,
+                   &stop)) {
     x_stopped = 1;
-    x2 = stop;
+    x2n = stop;
+    x2d = 1;
   }
-  y2 = y + vy;
+  y2n = yn + vy * yd;
   if (has_map && vy != 0 &&
-      ds_tile_stop(vy, y2, h, x2, w, swept, th, tw, bytes, cols, 1, row0, col0, rows, cols, &stop)) {
+      ds_tile_stop(vy, y2n, y2d, h, x2n, x2d, w, swept, th, tw, bytes, cols, 1, row0, col0, rows, cols,
+                   &stop)) {
     y_stopped = 1;
-    y2 = stop;
+    y2n = stop;
+    y2d = 1;
   }
-  if (!((flags & DS_HAS_X) && x == x2)) { C_set_block_item(out, 0, C_fix(x2)); writes |= DS_WRITE_X; }
-  if (!((flags & DS_HAS_Y) && y == y2)) { C_set_block_item(out, 1, C_fix(y2)); writes |= DS_WRITE_Y; }
+  if (!((flags & DS_HAS_X) && xn == x2n && xd == x2d)) {
+    C_set_block_item(out, 0, C_fix(x2n));
+    C_set_block_item(out, 6, C_fix(x2d));
+    writes |= DS_WRITE_X;
+  }
+  if (!((flags & DS_HAS_Y) && yn == y2n && yd == y2d)) {
+    C_set_block_item(out, 1, C_fix(y2n));
+    C_set_block_item(out, 7, C_fix(y2d));
+    writes |= DS_WRITE_Y;
+  }
   if (x_stopped && !((flags & DS_HAS_VX) && vx == 0)) {
     C_set_block_item(out, 2, C_fix(0));
     writes |= DS_WRITE_VX;
@@ -122,8 +171,8 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
     writes |= DS_WRITE_AY;
   }
   if ((flags & DS_GROUND) && grav) {   /* the row one pixel below the feet */
-    long row = ds_floor_div(y2 + h + 1, th);
-    long c0 = ds_floor_div(x2, tw), c1 = ds_floor_div(x2 + w - 1, tw);
+    long row = ds_floor_div(y2n + (h + 1) * y2d, y2d * th);
+    long c0 = ds_first(x2n, x2d, tw), c1 = ds_last(x2n, x2d, w, tw);
     C_word ground = C_mk_bool(has_map &&
                               (ds_solid(bytes, cols, rows, col0, row0, c0, row) ||
                                ds_solid(bytes, cols, rows, col0, row0, ds_max(c0, c1), row)));

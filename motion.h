@@ -1,7 +1,7 @@
 /* The motion kernel's interface with physics.scm: the flags it is given
-   for an entity and the keys it answers to write. physics.scm reads every
-   value below by name (define-foreign-variable), so the two sides cannot
-   drift apart. */
+   for an entity and the keys it answers to write. physics.scm names every
+   value below as a constant that the C compiler checks against this file
+   (define-kernel-flag), so the two sides cannot drift apart. */
 #ifndef DS_MOTION_H
 #define DS_MOTION_H
 
@@ -16,7 +16,9 @@ enum {
   DS_NOT_HERE = 1024    /* an unknown #:collision-mode: not for the kernel */
 };
 
-/* the keys to write; their new values are out[0] .. out[5] in this order */
+/* the keys to write; their new values are out[0] .. out[5] in this order,
+   x and y as numerator and denominator: x is out[0] / out[6], y is
+   out[1] / out[7] */
 enum {
   DS_WRITE_X = 1, DS_WRITE_Y = 2, DS_WRITE_VX = 4, DS_WRITE_VY = 8,
   DS_WRITE_AY = 16, DS_WRITE_ON = 32

@@ -11,7 +11,7 @@
 (module (downstroke physics)
   (apply-acceleration apply-gravity apply-velocity-x resolve-tile-collisions-x
    apply-velocity-y resolve-tile-collisions-y step-motion motion-pass detect-on-solid
-   resolve-entity-collisions sync-groups
+   record-frame-start resolve-entity-collisions sync-groups
    aabb-overlap? entity-tile-cells entity-cell-span tile-push-pos
    entity-solid-support-below? resolve-pair push-apart
    discrete-safe-speed tunnel-risk?
@@ -79,7 +79,7 @@
              (let () body ...)
              (reject-numbers e (list key ...) (list var ...)))))))
 
-;; a + b for the step that moves key: a sum of finite numbers that
+  ;; a + b for the step that moves key: a sum of finite numbers that
   ;; overflows to an infinity is that step's error, naming the entity and
   ;; the key, not a failure later in a tile lookup.
   (define-inline (sum e key a b)
@@ -89,17 +89,6 @@
     (error 'downstroke
            (sprintf "entity ~a: ~s overflowed to ~s (~s + ~s); positions and velocities must stay finite"
                     (entity-label e) key (+ a b) a b)))
-
-  ;; The first sum of the motion steps that overflowed, reported as that
-  ;; step reports it (the fused passes check their sums once, at the end,
-  ;; so that the common case has no branch per sum). vy is the vertical
-  ;; velocity after gravity, the one velocity-y adds.
-  (define (motion-overflowed e grav accelerate? vy0 ay x vx y vy)
-    (let* ((vy1 (if accelerate? (+ vy0 ay) vy0)))
-      (cond ((and accelerate? (not (plain-number? vy1))) (overflowed e #:vy vy0 ay))
-            ((and grav (not (plain-number? (+ vy1 *gravity*)))) (overflowed e #:vy vy1 *gravity*))
-            ((not (plain-number? (+ x vx))) (overflowed e #:x x vx))
-            (else (overflowed e #:y y vy)))))
 
   ;; The error check-entity-number raises for the first bad value.
   (define (reject-numbers e keys values)
@@ -231,22 +220,43 @@
 
   ;;; Per-entity steps, in pipeline order
 
-  (define-pipeline (apply-acceleration acceleration) (scene entity dt)
-    guard: (entity-ref entity #:gravity? #f)
+  ;; Each motion step is its rule (a procedure of the scene and the entity)
+  ;; behind its guard and skip symbol. The rules are the contract's motion,
+  ;; written once: the steps run them, and so does the motion pass for
+  ;; every entity its C kernel does not take (motion-steps, below).
+
+  ;; The guard of acceleration and gravity.
+  (define (gravity-on? entity) (entity-ref entity #:gravity? #f))
+
+  ;; #:ay is added to #:vy and consumed (set to 0).
+  (define (accelerate scene entity)
     (let ((ay (num entity #:ay)))
       (if (and (eq? ay 0) (assq #:ay entity))
           entity                        ; nothing to consume: no new entity
           (entity-set (entity-set entity #:vy (sum entity #:vy (num entity #:vy) ay)) #:ay 0))))
 
-  (define-pipeline (apply-gravity gravity) (scene entity dt)
-    guard: (entity-ref entity #:gravity? #f)
+  (define (fall scene entity)
     (entity-set entity #:vy (sum entity #:vy (num entity #:vy) *gravity*)))
 
-  (define-pipeline (apply-velocity-x velocity-x) (scene entity dt)
+  (define (move-x scene entity)
     (entity-set entity #:x (sum entity #:x (num entity #:x) (num entity #:vx))))
 
-  (define-pipeline (apply-velocity-y velocity-y) (scene entity dt)
+  (define (move-y scene entity)
     (entity-set entity #:y (sum entity #:y (num entity #:y) (num entity #:vy))))
+
+  (define-pipeline (apply-acceleration acceleration) (scene entity dt)
+    guard: (gravity-on? entity)
+    (accelerate scene entity))
+
+  (define-pipeline (apply-gravity gravity) (scene entity dt)
+    guard: (gravity-on? entity)
+    (fall scene entity))
+
+  (define-pipeline (apply-velocity-x velocity-x) (scene entity dt)
+    (move-x scene entity))
+
+  (define-pipeline (apply-velocity-y velocity-y) (scene entity dt)
+    (move-y scene entity))
 
   ;; Which tile step an entity gets: its own #:collision-mode, else the
   ;; scene's.
@@ -285,10 +295,13 @@
                (>= (abs (num entity #:vy))
                    (discrete-safe-speed (num entity #:height) (tilemap-tile-height tm)))))))
 
-  ;; One tile pass on one axis, for a body at `pos` of `size` that moved by
-  ;; v (not 0) this frame, spanning across..across+across-size on the other
-  ;; axis: where it stops, or #f when no solid tile is in its way.
-  (define (tile-stop v pos size across across-size swept tile tile-across grid)
+  ;; One tile pass on one axis, for a body at `pos` of `size` with velocity
+  ;; v (not 0), spanning across..across+across-size on the other axis:
+  ;; where it stops, or #f when no solid tile is in its way. `moved` is #f
+  ;; in discrete mode; in swept mode, how far the velocity step moved the
+  ;; body this frame (v, or 0 when the body skips that step: a sweep covers
+  ;; only the motion made this frame).
+  (define (tile-stop v pos size across across-size moved tile tile-across grid)
     ;; swept: from the line the leading edge was in before the move. Only
     ;; the leading edge counts, so a body leaving a wall it touched is not
     ;; caught by that wall when pos - v rounds (flonums) to just inside it.
@@ -296,131 +309,80 @@
     ;; the one it moves into.)
     (let ((l0 (span-first pos tile)) (l1 (span-last pos size tile))
           (c0 (span-first across tile-across)) (c1 (span-last across across-size tile-across))
-          (start (and swept (- pos v))))
+          (start (and moved (- pos moved))))
       (let ((line (if (> v 0)
                       (nearest-solid-line grid
-                                          (if swept
+                                          (if start
                                               (min (max (span-first start tile) (span-last start size tile)) l0)
                                               l0)
                                           l1 1 c0 c1)
                       (nearest-solid-line grid
-                                          (if swept
+                                          (if start
                                               (max (min (span-first start tile) (span-last start size tile)) l1)
                                               l1)
                                           l0 -1 c0 c1))))
         (and line (tile-push-pos v line tile size)))))
 
-  ;; Both tile passes: pos-key is the axis resolved, across-key the other.
-  ;; A velocity of 0 snaps nothing.
-  (define (resolve-tiles entity swept pos-key size-key vel-key across-key across-size-key
+  ;; Both tile passes: pos-key is the axis resolved, across-key the other,
+  ;; velocity-step the skip symbol of the step that moves pos-key. A
+  ;; velocity of 0 snaps nothing.
+  (define (resolve-tiles entity swept pos-key size-key vel-key velocity-step across-key across-size-key
                          tile tile-across grid)
     (let ((v (num entity vel-key)))
       (if (zero? v)
           entity
           (let ((stop (tile-stop v (num entity pos-key) (num entity size-key)
                                  (num entity across-key) (num entity across-size-key)
-                                 swept tile tile-across grid)))
+                                 (and swept (if (entity-skips-pipeline? entity velocity-step) 0 v))
+                                 tile tile-across grid)))
             (if stop
                 (entity-set* entity pos-key stop vel-key 0)
                 entity)))))
 
+  (define (stop-at-tiles-x scene entity)
+    (let ((tm (scene-tilemap scene)))
+      (resolve-tiles entity (swept? scene entity) #:x #:width #:vx 'velocity-x #:y #:height
+                     (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm))))
+
+  (define (stop-at-tiles-y scene entity)
+    (let ((tm (scene-tilemap scene)))
+      (resolve-tiles entity (swept? scene entity) #:y #:height #:vy 'velocity-y #:x #:width
+                     (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm))))
+
   (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
     guard: (scene-tilemap scene)
-    (let ((tm (scene-tilemap scene)))
-      (resolve-tiles entity (swept? scene entity) #:x #:width #:vx #:y #:height
-                     (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm))))
+    (stop-at-tiles-x scene entity))
 
   (define-pipeline (resolve-tile-collisions-y tile-collisions-y) (scene entity dt)
     guard: (scene-tilemap scene)
-    (let ((tm (scene-tilemap scene)))
-      (resolve-tiles entity (swept? scene entity) #:y #:height #:vy #:x #:width
-                     (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm))))
+    (stop-at-tiles-y scene entity))
 
-  ;;; Steps 2-7 in one pass
+;;; Steps 2-7 in one pass
 
   ;; Steps 2-7 of the contract (acceleration, gravity, velocity x, tile
   ;; collisions x, velocity y, tile collisions y) for one entity, giving
-  ;; exactly what running those six steps one after the other gives (a
-  ;; property test compares the two), with one walk of the entity to read it
-  ;; and one copy to write it. Entities of plain fixnums take motion-pass's
-  ;; faster path below, which gives the same again.
+  ;; exactly what running those six steps one after the other gives: the
+  ;; motion pass of a one-entity frame (below).
   (define (step-motion scene e dt)
     ((motion-pass scene dt) e))
 
-  ;; What the steps write for a key, given its pair p (or #f) and its final
-  ;; value v: v, or 'keep when the key holds that value already.
-  (define-inline (final p v) (if (and p (eqv? (cdr p) v)) 'keep v))
-
-  ;; step-motion for any numbers: generic arithmetic, every number checked.
-  ;; An entity that switches steps off with #:skip-pipelines takes the six
-  ;; steps one by one.
-  (define (general-motion scene e dt)
-    (entity-let e ((xp #:x) (yp #:y) (wp #:width) (hp #:height) (vxp #:vx) (vyp #:vy)
-                   (ayp #:ay) (gp #:gravity?) (skipp #:skip-pipelines) (modep #:collision-mode))
-      (if (and skipp (cdr skipp) (not (null? (cdr skipp))))
-          (chain-motion scene e dt)
-          (let ((grav (and gp (cdr gp)))
-                (tm (scene-tilemap scene)))
-            (define (read p key) (read-number e p key))
-            (let* ((ay (and grav (read ayp #:ay)))
-                   (accelerate? (and grav (not (and (eq? ay 0) ayp))))
-                   (vy0 (and grav (read vyp #:vy)))
-                   (vy1 (if accelerate? (+ vy0 ay) vy0))
-                   (vy2 (and grav (+ vy1 *gravity*)))
-                   (x0 (read xp #:x))
-                   (vx (read vxp #:vx))
-                   (x1 (+ x0 vx))
-                   (swept (and tm (swept-mode? scene e (and modep (cdr modep)))))
-                   (x-stop (and tm (not (zero? vx)) (plain-number? x1)
-                                (tile-stop vx x1 (read wp #:width) (read yp #:y) (read hp #:height)
-                                           swept (tilemap-tile-width tm) (tilemap-tile-height tm)
-                                           (column-grid tm))))
-                   (x2 (or x-stop x1))
-                   (vy (if grav vy2 (read vyp #:vy)))
-                   (y0 (read yp #:y))
-                   (y1 (+ y0 vy))
-                   (y-stop (and tm (not (zero? vy)) (plain-number? y1) (plain-number? x1)
-                                (tile-stop vy y1 (read hp #:height) x2 (read wp #:width)
-                                           swept (tilemap-tile-height tm) (tilemap-tile-width tm)
-                                           (row-grid tm)))))
-              (if (eq? 1 (fxand* (if grav (plain-number-bit vy2) 1) (plain-number-bit x1)
-                                 (plain-number-bit y1)))
-                  (rewrite-motion e grav
-                                  xp (final xp x2)
-                                  yp (final yp (or y-stop y1))
-                                  vxp (if x-stop (final vxp 0) 'keep)
-                                  vyp (cond (y-stop (final vyp 0)) (grav (final vyp vy2)) (else 'keep))
-                                  ayp (if accelerate? (final ayp 0) 'keep)
-                                  #f 'keep)
-                  (motion-overflowed e grav accelerate? vy0 ay x0 vx y0 vy)))))))
-
-  ;; general-motion in a scene without a map, for an entity without skips:
-  ;; acceleration, gravity and velocity only, given the pairs the caller
-  ;; found. The numbers are checked all at once (see let-numbers), in the
-  ;; order general-motion reads them, so there is no call but the rewrite.
-  (define (free-motion e grav xp yp vxp vyp ayp)
-    (let ((x (if xp (cdr xp) 0)) (y (if yp (cdr yp) 0))
-          (vx (if vxp (cdr vxp) 0)) (vy (if vyp (cdr vyp) 0))
-          (ay (if ayp (cdr ayp) 0)))
-      (if (eq? 1 (fxand* (if grav (plain-number-bit ay) 1) (plain-number-bit vy)
-                         (plain-number-bit x) (plain-number-bit vx) (plain-number-bit y)))
-          (let* ((accelerate? (and grav (not (and (eq? ay 0) ayp))))
-                 (vy1 (if accelerate? (+ vy ay) vy))
-                 (vy2 (if grav (+ vy1 *gravity*) vy))
-                 (x1 (+ x vx))
-                 (y1 (+ y vy2)))
-            (if (eq? 1 (fxand* (plain-number-bit vy2) (plain-number-bit x1) (plain-number-bit y1)))
-                (rewrite-motion e grav
-                                xp (final xp x1)
-                                yp (final yp y1)
-                                vxp 'keep
-                                vyp (if grav (final vyp vy2) 'keep)
-                                ayp (if accelerate? (final ayp 0) 'keep)
-                                #f 'keep)
-                (motion-overflowed e grav accelerate? vy ay x vx y vy2)))
-          (if grav
-              (reject-numbers e '(#:ay #:vy #:x #:vx #:y) (list ay vy x vx y))
-              (reject-numbers e '(#:x #:vx #:vy #:y) (list x vx vy y))))))
+  ;; The six steps one after the other, as the contract runs them. An
+  ;; entity without #:skip-pipelines has each guard read once and each rule
+  ;; called directly; any other runs the steps themselves.
+  (define (motion-steps scene e dt)
+    (if (entity-ref e #:skip-pipelines #f)  ; a list, or the steps' error
+        (let* ((e (apply-acceleration scene e dt))
+               (e (apply-gravity scene e dt))
+               (e (apply-velocity-x scene e dt))
+               (e (resolve-tile-collisions-x scene e dt))
+               (e (apply-velocity-y scene e dt)))
+          (resolve-tile-collisions-y scene e dt))
+        (let* ((map? (scene-tilemap scene))
+               (e (if (gravity-on? e) (fall scene (accelerate scene e)) e))
+               (e (move-x scene e))
+               (e (if map? (stop-at-tiles-x scene e) e))
+               (e (move-y scene e)))
+          (if map? (stop-at-tiles-y scene e) e))))
 
   ;; What rewrite-motion's callers pass for a key they leave as it is: the
   ;; symbol keep, which no value they write (a number or a boolean) can be.
@@ -454,24 +416,18 @@
                (add yp y #:y (add vxp vx #:vx (add xp x #:x (add ayp ay #:ay (add vyp vy #:vy copy)))))
                (add vyp vy #:vy (add yp y #:y (add vxp vx #:vx (add xp x #:x copy))))))))
 
-  (define (chain-motion scene e dt)
-    (let* ((e (apply-acceleration scene e dt))
-           (e (apply-gravity scene e dt))
-           (e (apply-velocity-x scene e dt))
-           (e (resolve-tile-collisions-x scene e dt))
-           (e (apply-velocity-y scene e dt)))
-      (resolve-tile-collisions-y scene e dt)))
-
   ;;; The motion pass of a frame
 
-  ;; The fixnum twin of general-motion (and of ground detection), in C.
+  ;; The exact twin of motion-steps (and of ground detection), in C.
   ;; CHICKEN compiles every value-producing conditional and loop of such a
   ;; body into a closure holding its two dozen live values; those closures
   ;; cost more than the arithmetic and kept the garbage collector busy.
   ;; This C allocates nothing: it reads the entity's numbers (fixnums
-  ;; within +-2^40, so no sum overflows) and `flags`, puts the new values
-  ;; in `out` and returns which keys to write (a key that holds its new
-  ;; value already is not written, as in general-motion). Same formulas in
+  ;; within +-2^40, and positions that are exact rationals of such
+  ;; fixnums with denominators below 2^20, so no sum overflows) and
+  ;; `flags`, puts the new values in `out` and returns which keys to write
+  ;; (a key that holds its new value already is not written, as entity-set
+  ;; does). Same formulas in
   ;; the same order; tests/pipeline-test.scm compares the two paths. The
   ;; code is motion.c; the flags and answers are motion.h's, by name.
   ;; Each flag is a Scheme constant, so that the flag expressions of
@@ -511,15 +467,22 @@
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object))
 
+  ;; The kernel's answer n / d for a position: out[n-slot] / out[d-slot], in
+  ;; lowest terms already, so the ratnum is made without a gcd.
+  (define-inline (ratio out n-slot d-slot)
+    (let ((n (vector-ref out n-slot)) (d (vector-ref out d-slot)))
+      (if (eq? d 1) n (##core#inline_allocate ("C_a_i_ratnum" 3) n d))))
+
   ;; What the C code is given in a scene without a map (it reads neither).
   (define no-grid (make-u8vector 0))
   (define no-map (vector 0 0 0 0 1 1))
 
   ;; What every entity of a frame shares (the map's solid grid, size and
   ;; origin, the tile size, the scene's collision mode) is read once. Each
-  ;; entity whose numbers are all small fixnums, with no #:skip-pipelines,
-  ;; then goes through fixnum-motion!; any other one (flonums, rationals,
-  ;; bignums, a NaN, skips, an unknown mode) through general-motion.
+  ;; entity whose numbers the kernel takes (above), with no
+  ;; #:skip-pipelines, then goes through fixnum-motion!; any other one
+  ;; (flonums, other rationals, bignums, a NaN, skips, an unknown mode)
+  ;; through motion-steps, the readable steps.
   ;; With ground? the pass also does the contract's ground detection, which
   ;; is only right when no entity of the scene is solid: the engine passes
   ;; it then, and only then.
@@ -536,17 +499,11 @@
            ;; an entity's own mode replaces the scene's
            (own-mode-flags (fxand scene-flags (fxnot flag-swept)))
            (gravity *gravity*)
-           (out (make-vector 6 #f)))
+           (out (make-vector 8 1)))
+      ;; An entity the C code leaves (see above).
       (define (general e)
-        (let ((moved (general-motion scene e dt)))
+        (let ((moved (motion-steps scene e dt)))
           (if ground? (detect-on-solid scene moved dt) moved)))
-      ;; An entity the C code leaves (see above); without a map and skips,
-      ;; free-motion does what general-motion would.
-      (define (fallback e grav skipp xp yp vxp vyp ayp)
-        (cond (tm (general e))
-              ((if skipp (if (cdr skipp) (not (null? (cdr skipp))) #f) #f) (general e))
-              (ground? (detect-on-solid scene (free-motion e grav xp yp vxp vyp ayp) dt))
-              (else (free-motion e grav xp yp vxp vyp ayp))))
       (if (and tm (not map?))
           general
           (lambda (e)
@@ -562,7 +519,7 @@
                 ;; Written as plain expressions, not nested conditionals, so
                 ;; that CHICKEN makes no closures here (see above).
                 (let* ((flags (fxior
-                               ;; an unknown mode is general-motion's error to raise
+                               ;; an unknown mode is the tile steps' error to raise
                                (fxior (if own own-mode-flags scene-flags)
                                       (fxior (if (eq? own 'swept) flag-swept 0)
                                              (if (memq own '(#f swept discrete)) 0 flag-not-here)))
@@ -573,11 +530,11 @@
                        (writes (fixnum-motion! out bytes map flags gravity (and skipp (cdr skipp))
                                                x y w h vx vy ay (and onp (cdr onp)))))
                   (cond ((fx= writes 0) e)
-                        ((fx< writes 0) (fallback e grav skipp xp yp vxp vyp ayp))
+                        ((fx< writes 0) (general e))
                         (else
                          (rewrite-motion e grav
-                                         xp (if (fx= 0 (fxand writes write-x)) 'keep (vector-ref out 0))
-                                         yp (if (fx= 0 (fxand writes write-y)) 'keep (vector-ref out 1))
+                                         xp (if (fx= 0 (fxand writes write-x)) 'keep (ratio out 0 6))
+                                         yp (if (fx= 0 (fxand writes write-y)) 'keep (ratio out 1 7))
                                          vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
                                          vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
                                          ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
@@ -708,6 +665,26 @@
             (values (shift a axis (- half) -1) (shift b axis half 1))
             (values (shift a axis half 1) (shift b axis (- half) -1))))))
 
+  ;; Where an immovable body was at the start of the frame's engine update:
+  ;; the pipeline's first step writes it as #:frame-start (x . y), so that
+  ;; the entity step knows what the body did this frame, whatever moved it
+  ;; (its velocity, a tween, a tile snap, the game).
+  (define-pipeline (record-frame-start frame-start) (scene entity dt)
+    guard: (entity-ref entity #:immovable? #f)
+    (let ((x (num entity #:x)) (y (num entity #:y))
+          (old (entity-ref entity #:frame-start #f)))
+      (if (and (pair? old) (eqv? (car old) x) (eqv? (cdr old) y))
+          entity
+          (entity-set entity #:frame-start (cons x y)))))
+
+  ;; How far a body moved since record-frame-start: 0 and 0 without a
+  ;; record (a body that did not move, or a pipeline without that step).
+  (define (frame-displacement e)
+    (let ((start (entity-ref e #:frame-start #f)))
+      (if (pair? start)
+          (values (- (num e #:x) (car start)) (- (num e #:y) (cdr start)))
+          (values 0 0))))
+
   ;; A movable body against an immovable one: the mover alone moves the full
   ;; overlap, and its velocity on that axis becomes 0. A mover falling onto
   ;; it (vy > 0) while its centre is above the immovable's is separated
@@ -715,7 +692,8 @@
   ;; platform's edge. A mover that is not falling (a walker on the floor, a
   ;; top-down body) meets it on the shallow axis like any other contact.
   ;; A mover pushed up off an immovable body rests on it, and is carried by
-  ;; that body's #:vx: a moving platform takes its rider along.
+  ;; that body's displacement on x this frame: a moving platform takes its
+  ;; rider along, and one that did not move carries nothing.
   (define (push-off mover fixed mover-is-later?)
     (let-values (((axis depth)
                   (if (and (> (num mover #:vy) 0)
@@ -724,11 +702,32 @@
                       (values 'y (overlap-on mover fixed 'y))
                       (shallow-axis mover fixed))))
       (let* ((up? (goes-negative? mover fixed axis mover-is-later?))
-             (moved (shift mover axis (if up? (- depth) depth) 0))
-             (carry (num fixed #:vx)))
-        (if (and up? (eq? axis 'y) (not (zero? carry)))
-            (entity-set moved #:x (+ (num moved #:x) carry))
+             (moved (shift mover axis (if up? (- depth) depth) 0)))
+        (if (and up? (eq? axis 'y))
+            (carry moved fixed)
             moved))))
+
+  (define (carry rider platform)
+    (let-values (((dx dy) (frame-displacement platform)))
+      (if (zero? dx)
+          rider
+          (entity-set rider #:x (+ (num rider #:x) dx)))))
+
+  ;; A lift going down: `fixed` moved down by dy > 0 this frame, so its top
+  ;; swept from y - dy to y. A mover not rising, overlapping it on x, whose
+  ;; bottom that top swept past (or reached) stood on it: it goes down with
+  ;; it, its bottom on the lift's top and its #:vy 0, and is carried on x.
+  ;; (Falling 1 px a frame, it would otherwise be left behind by any lift
+  ;; faster than that.)
+  (define (ride-down mover fixed dy)
+    (let ((top (num fixed #:y))
+          (bottom (+ (num mover #:y) (num mover #:height))))
+      (if (and (>= (num mover #:vy) 0)
+               (<= (- top dy) bottom top)
+               (< (num mover #:x) (+ (num fixed #:x) (num fixed #:width)))
+               (< (num fixed #:x) (+ (num mover #:x) (num mover #:width))))
+          (carry (entity-set* mover #:y (- top (num mover #:height)) #:vy 0) fixed)
+          mover)))
 
   (define (collides? e)
     (and (entity-ref e #:solid? #f)
@@ -768,26 +767,57 @@
   ;; takes the hash from `spatial-hash-threshold` colliding entities on.
   (define spatial-hash-threshold 32)
 
+  ;; resolve-colliding-pair where a or b may be a lift going down (da, db:
+  ;; how far it went, or #f).
+  (define (resolve-pair-with-lifts a b da db)
+    (let-values (((a1 b1) (resolve-colliding-pair a b)))
+      (cond ((not (and (eq? a1 a) (eq? b1 b))) (values a1 b1))
+            ((and db (not (flag a #:immovable?))) (values (ride-down a b db) b))
+            ((and da (not (flag b #:immovable?))) (values a (ride-down b a da)))
+            (else (values a b)))))
+
+  ;; How far an immovable body went down this frame, or #f.
+  (define (descent e)
+    (and (flag e #:frame-start)
+         (flag e #:immovable?)
+         (let-values (((dx dy) (frame-displacement e)))
+           (and (positive? dy) dy))))
+
   (define (resolve-entity-collisions entities #!optional (method 'auto))
     (let* ((all (list->vector entities))
            (idx (let loop ((i (- (vector-length all) 1)) (out '()))
                   (cond ((< i 0) (list->vector out))
                         ((collides? (vector-ref all i)) (loop (- i 1) (cons i out)))
                         (else (loop (- i 1) out)))))
-           (n (vector-length idx)))
+           (n (vector-length idx))
+           ;; lifts going down, by collider; #f when there is none
+           (drops (let ((v (make-vector n #f)))
+                    (let loop ((p 0) (any? #f))
+                      (if (fx= p n)
+                          (and any? v)
+                          (let ((dy (descent (vector-ref all (vector-ref idx p)))))
+                            (vector-set! v p dy)
+                            (loop (fx+ p 1) (or any? dy))))))))
       ;; true when the pair moved
       (define (visit! p q)
         (let* ((i (vector-ref idx p)) (j (vector-ref idx q))
                (a0 (vector-ref all i)) (b0 (vector-ref all j)))
-          (let-values (((a b) (resolve-colliding-pair a0 b0)))
+          (let-values (((a b) (if drops
+                                  (resolve-pair-with-lifts a0 b0 (vector-ref drops p) (vector-ref drops q))
+                                  (resolve-colliding-pair a0 b0))))
             (and (not (and (eq? a a0) (eq? b b0)))
                  (begin (vector-set! all i a)
                         (vector-set! all j b)
                         #t)))))
+      ;; A lift going down is filed with the space its top swept, so that
+      ;; the spatial hash visits the riders it left above it.
       (define (box p)
         (let ((e (vector-ref all (vector-ref idx p))))
           (let-numbers e ((x #:x) (y #:y) (w #:width) (h #:height))
-            (values x y w h))))
+            (let ((dy (and drops (vector-ref drops p))))
+              (if dy
+                  (values x (- y dy) w (+ h dy))
+                  (values x y w h))))))
       (if (< n 2)
           entities
           (begin

@@ -21,9 +21,12 @@
           (downstroke animation) (downstroke srfi-197))
 
   ;; The contract's pipeline (its section 2 and 3.4), one step after the
-  ;; other over every entity of the scene.
+  ;; other over every entity of the scene. The first step notes where each
+  ;; immovable body starts the frame, so that the entity step carries a
+  ;; rider by what its platform did (physics.scm, record-frame-start).
   (define (contract-pipeline scene dt)
     (chain scene
+      (scene-map-entities _ (cut record-frame-start        <> <> dt))
       (scene-map-entities _ (cut step-tweens               <> <> dt))
       (scene-map-entities _ (cut apply-acceleration        <> <> dt))
       (scene-map-entities _ (cut apply-gravity             <> <> dt))
@@ -49,22 +52,24 @@
   (define need-groups 8)        ; an entity has a #:group-id
   (define need-animation 16)    ; an entity has #:animations
   (define need-support 32)      ; an entity has #:solid? (it may hold others up)
+  (define need-start 64)        ; an entity has #:immovable? (a platform may carry)
 
   ;; The walk below, in C: it reads every pair of every entity each frame,
   ;; which in Scheme was a twentieth of a crowd scene's time. Bit i is set
   ;; when some entity holds need-keys[i] with a true value, except for
   ;; #:solid? (bit 2), whose entities are counted in bits 8-9 (0, 1, 2 or
-  ;; more). -1 when an entity is not a list of pairs: the Scheme walk then
-  ;; raises the error.
+  ;; more). Bit 5 (#:immovable?) is need-start. -1 when an entity is not a
+  ;; list of pairs: the Scheme walk then raises the error.
   (foreign-declare "#include \"needs.c\"")
-  (define need-keys (vector #:tween #:gravity? #:solid? #:group-id #:animations))
+  (define need-keys (vector #:tween #:gravity? #:solid? #:group-id #:animations #:immovable?))
   (define c-needs (foreign-lambda scheme-object "ds_pipeline_needs" scheme-object scheme-object))
 
   (define (pipeline-needs entities)
     (let ((c (c-needs entities need-keys)))
       (if (fx< c 0)
           (scheme-pipeline-needs entities)
-          (fxior (fxand c (fxior (fxior need-tweens need-ground) (fxior need-groups need-animation)))
+          (fxior (fxior (fxand c (fxior (fxior need-tweens need-ground) (fxior need-groups need-animation)))
+                        (if (fx= 0 (fxand c 32)) 0 need-start))
                  (case (fxshr c 8)
                    ((0) 0)
                    ((1) need-support)
@@ -86,6 +91,7 @@
                         ((eq? k #:tween) (walk (cdr ps) (fxior bits need-tweens) solid?))
                         ((eq? k #:group-id) (walk (cdr ps) (fxior bits need-groups) solid?))
                         ((eq? k #:animations) (walk (cdr ps) (fxior bits need-animation) solid?))
+                        ((eq? k #:immovable?) (walk (cdr ps) (fxior bits need-start) solid?))
                         (else (walk (cdr ps) bits solid?)))))))))
 
   (define (needs? bits need) (not (fx= 0 (fxand bits need))))
@@ -104,9 +110,13 @@
            (tweens? (needs? before need-tweens))
            (ground-in-motion? (ground-joins-motion? before))
            (move (motion-pass scene dt ground-in-motion?))
-           (scene (scene-map-entities scene (if tweens?
-                                                (lambda (s e) (move (step-tweens s e dt)))
-                                                (lambda (s e) (move e)))))
+           ;; where platforms start, when one may carry a rider this frame
+           (starts? (needs? before need-start))
+           (scene (scene-map-entities scene (cond ((and tweens? starts?)
+                                                   (lambda (s e) (move (step-tweens s (record-frame-start s e dt) dt))))
+                                                  (tweens? (lambda (s e) (move (step-tweens s e dt))))
+                                                  (starts? (lambda (s e) (move (record-frame-start s e dt))))
+                                                  (else (lambda (s e) (move e))))))
            (needs (if tweens? (pipeline-needs (scene-entities scene)) before)))
       (define (when-needed need step scene) (if (needs? needs need) (step scene) scene))
       (define (ground-pass scene)

@@ -584,12 +584,26 @@
           (render-draw-blend-mode-set! r 'none)
           (apply render-draw-color-set! r bg)
           (render-clear! r)
-          (when tm (render-map-layers! r tm cx cy vw vh tex-for))
-          (render-entities! r (scene-entities scene) cx cy sprite-tileset
-                            (or (scene-tileset-texture scene)
-                                (and sprite-tileset (tileset-image sprite-tileset)
-                                     (lookup-texture textures
-                                                     (image-source (tileset-image sprite-tileset))))))
-          (when debug?
-            (render-debug-overlay! r scene view-width: vw view-height: vh))
-          (void))))))
+          ;; A zoomed camera sees view / zoom world pixels, drawn through
+          ;; SDL's scale (on top of the logical size's), restored after.
+          (with-zoom r (if camera (camera-zoom camera) 1)
+            (lambda (zoom)
+              (let ((vw (/ vw zoom)) (vh (/ vh zoom)))
+                (when tm (render-map-layers! r tm cx cy vw vh tex-for))
+                (render-entities! r (scene-entities scene) cx cy sprite-tileset
+                                  (or (scene-tileset-texture scene)
+                                      (and sprite-tileset (tileset-image sprite-tileset)
+                                           (lookup-texture textures
+                                                           (image-source (tileset-image sprite-tileset))))))
+                (when debug?
+                  (render-debug-overlay! r scene view-width: vw view-height: vh)))))
+          (void)))))
+
+  (define (with-zoom r zoom draw)
+    (if (= zoom 1)
+        (draw 1)
+        (receive (sx sy) (render-scale r)
+          (render-scale-set! r (* sx zoom) (* sy zoom))
+          (dynamic-wind void
+                        (lambda () (draw zoom))
+                        (lambda () (render-scale-set! r sx sy)))))))

@@ -10,20 +10,16 @@
    scene-solid-entities
    scene-map-entities scene-transform-entities
    scene-add-entity scene-remove-entities scene-find-tagged scene-find-all-tagged
-   make-camera camera? camera-x camera-y camera-follow scene-follow-camera)
+   scene-follow-camera)
+
+  ;; a scene is made with its camera: the camera's names come with it
+  (import (chicken module))
+  (reexport (downstroke camera))
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken fixnum) (chicken keyword) (chicken string)
           (chicken condition)
-          (downstroke entity) (downstroke map))
-
-  (define-record-type camera
-    (%make-camera x y)
-    camera?
-    (x camera-x)
-    (y camera-y))
-
-  (define/keywords (make-camera #!key (x 0) (y 0)) (%make-camera x y))
+          (downstroke entity) (downstroke map) (downstroke camera))
 
   ;; `solids` caches the solid entities of this scene's entity list, which
   ;; ground detection asks for once per gravity entity. It is derived data:
@@ -189,25 +185,6 @@
       (cond ((null? es) (reverse out))
             ((entity-has-tag? (car es) tag) (loop (cdr es) (cons (car es) out)))
             (else (loop (cdr es) out)))))
-
-  ;; The camera that centres a view of view-w x view-h on `target`, kept
-  ;; inside the map when there is one (a map smaller than the view pins the
-  ;; camera to the map's top or left edge). An infinite map's edges are
-  ;; those of its chunks, negative ones included. Values stay exact; the
-  ;; renderer rounds.
-  (define (camera-follow camera target view-w view-h tilemap)
-    (define (axis centre view lo extent)
-      (let ((pos (- centre (/ view 2))))
-        (if extent (max lo (min pos (- (+ lo extent) view))) pos)))
-    (let* ((target (as-entity target))    ; a plist target works too
-           (cx (+ (entity-ref target #:x 0) (/ (entity-ref target #:width 0) 2)))
-           (cy (+ (entity-ref target #:y 0) (/ (entity-ref target #:height 0) 2))))
-      (%make-camera (axis cx view-w
-                          (if tilemap (* (tilemap-origin-col tilemap) (tilemap-tile-width tilemap)) 0)
-                          (and tilemap (tilemap-pixel-width tilemap)))
-                    (axis cy view-h
-                          (if tilemap (* (tilemap-origin-row tilemap) (tilemap-tile-height tilemap)) 0)
-                          (and tilemap (tilemap-pixel-height tilemap))))))
 
   ;; What the engine does after update:, as a pure function of the scene.
   (define (scene-follow-camera s view-w view-h)

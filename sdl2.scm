@@ -57,7 +57,7 @@
    renderer-alive? renderer-software? renderer-output-size renderer-name
    ;; for sibling FFI modules (text, ...): the native SDL_Renderer*
    renderer-pointer
-   render-set-logical-size! render-logical-size
+   render-set-logical-size! render-logical-size render-scale render-scale-set!
    render-draw-color-set! render-draw-blend-mode-set!
    render-clear! render-fill-rect! render-draw-rect! render-copy!
    render-present! render-read-pixels
@@ -501,6 +501,21 @@ EOF
         ((foreign-lambda void "SDL_RenderGetLogicalSize" c-pointer (c-pointer int) (c-pointer int))
          p (location w) (location h))
         (values w h))))
+
+  ;; The renderer's drawing scale, (values sx sy); a logical size sets it.
+  (define (render-scale r)
+    (let ((p (live-renderer 'render-scale r)))
+      (let-location ((sx float 1.0) (sy float 1.0))
+        ((foreign-lambda void "SDL_RenderGetScale" c-pointer (c-pointer float) (c-pointer float))
+         p (location sx) (location sy))
+        (values sx sy))))
+
+  (define (render-scale-set! r sx sy)
+    (unless (and (real? sx) (real? sy) (positive? sx) (positive? sy) (finite? sx) (finite? sy))
+      (error 'render-scale-set! "the scale must be two positive finite numbers" sx sy))
+    (check-status 'render-scale-set! "SDL_RenderSetScale"
+                  ((foreign-lambda int "SDL_RenderSetScale" c-pointer float float)
+                   (live-renderer 'render-scale-set! r) (exact->inexact sx) (exact->inexact sy))))
 
   (define (byte who v)
     (unless (and (fixnum? v) (<= 0 v 255))

@@ -1,14 +1,15 @@
-;;; The benchmark scenes of bench-spec.md (S1, S2, S3), run by `make bench`.
+;;; The benchmark scenes of bench-spec.md (S1, S2, S3) and of
+;;; docs/performance.org (S4), run by `make bench`.
 ;;; Prints a table, the checksum lines the spec asks for, and writes one CSV
 ;;; row per (scene, mode, n or speed):
 ;;;   scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct
-;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 steps ...]
+;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 S4 steps ...]
 
 (import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
         (chicken string) (chicken sort) (chicken gc) (chicken io) (chicken condition)
         (only (chicken file) directory-exists?) (only (chicken pathname) pathname-directory)
         (downstroke entity) (downstroke scene) (downstroke tilemap)
-        (downstroke physics) (downstroke engine) (downstroke pipeline) (downstroke tween) (downstroke animation))
+        (downstroke physics) (downstroke overlap) (downstroke engine) (downstroke pipeline) (downstroke tween) (downstroke animation))
 
 ;;; The generator of the spec: s := (1103515245 s + 12345) mod 2^31.
 (define seed 0)
@@ -282,6 +283,64 @@
                                       (+ mf n)))
                             (frames (+ i 1) (engine-pipeline scene 16)))))))))))))
 
+;;; S4: bullets against enemies (docs/performance.org writes the scene
+;;; down): every overlapping (bullet . enemy) pair of every frame, found by
+;;; overlapping-pairs and by the double loop a user would write.
+(define s4-side 1024)
+
+(define (s4-entities n size speed)
+  (let loop ((k 0) (out '()))
+    (if (= k n)
+        (reverse out)
+        (let* ((x (modulo (rand) (- s4-side size))) (y (modulo (rand) (- s4-side size)))
+               (vx (- (modulo (rand) (+ (* 2 speed) 1)) speed))
+               (vy (- (modulo (rand) (+ (* 2 speed) 1)) speed)))
+          (loop (+ k 1)
+                (cons (list (cons #:x x) (cons #:y y) (cons #:width size) (cons #:height size)
+                            (cons #:vx vx) (cons #:vy vy))
+                      out))))))
+
+;; Each body moves by its velocity and wraps around the arena.
+(define (s4-move es)
+  (map (lambda (e)
+         (entity-set* e
+                      #:x (modulo (+ (entity-ref e #:x) (entity-ref e #:vx)) s4-side)
+                      #:y (modulo (+ (entity-ref e #:y) (entity-ref e #:vy)) s4-side)))
+       es))
+
+(define (s4-all-pairs bullets enemies)
+  (let outer ((bs bullets) (out '()))
+    (if (null? bs)
+        (reverse out)
+        (outer (cdr bs)
+               (let inner ((es enemies) (out out))
+                 (cond ((null? es) out)
+                       ((entity-overlap? (car bs) (car es)) (inner (cdr es) (cons (cons (car bs) (car es)) out)))
+                       (else (inner (cdr es) out))))))))
+
+(define (run-s4 method bullets enemies runs)
+  (let* ((find (if (eq? method 'overlapping-pairs) overlapping-pairs s4-all-pairs))
+         (frames 60) (warm 10) (pairs 0)
+         (times
+          (let repeat ((r 0) (times '()))
+            (if (= r runs)
+                times
+                (begin
+                  (reseed!)
+                  (let loop ((f 0) (bs (s4-entities bullets 4 4)) (es (s4-entities enemies 16 1)) (start #f) (found 0))
+                    (cond ((= f (+ warm frames))
+                           (set! pairs found)
+                           (repeat (+ r 1) (cons (- (now) start) times)))
+                          (else
+                           (let* ((start (if (= f warm) (now) start))
+                                  (hits (length (find bs es))))
+                             (loop (+ f 1) (s4-move bs) (s4-move es) start
+                                   (if (>= f warm) (+ found hits) found)))))))))))
+    (printf "checksum S4 ~a bullets=~a enemies=~a pairs=~a~%" method bullets enemies pairs)
+    (let ((ms (/ (median times) (exact->inexact frames))))
+      (report! "S4" method (+ bullets enemies) #f frames ms (/ (* 1000 ms) (+ bullets enemies)) #f #f)
+      ms)))
+
 ;;; Command line.
 (define args (command-line-arguments))
 (define (flag-value name default)
@@ -307,7 +366,7 @@
 (define (filter-scenes args)
   (let loop ((as args) (out '()))
     (cond ((null? as) out)
-          ((member (car as) '("S1" "S2" "S3" "steps")) (loop (cdr as) (cons (car as) out)))
+          ((member (car as) '("S1" "S2" "S3" "S4" "steps")) (loop (cdr as) (cons (car as) out)))
           (else (loop (cdr as) out)))))
 
 (when (wanted? "S1")
@@ -334,3 +393,8 @@
     (print "scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct")
     (for-each print (reverse csv-rows))))
 (printf "wrote ~a~%" csv-file)
+(when (wanted? "S4")
+  (let* ((bullets (if quick? 500 2000)) (enemies (if quick? 125 500))
+         (fast (run-s4 'overlapping-pairs bullets enemies runs))
+         (slow (run-s4 'all-pairs bullets enemies runs)))
+    (printf "S4 all-pairs / overlapping-pairs: ~a~%" (fixed (/ slow fast) 2))))

@@ -2,7 +2,7 @@
 ;;; Arrows move the ship, `a` (z or j) fires; enemies come in waves.
 (import scheme (chicken base) (chicken format)
         (downstroke entity) (downstroke scene) (downstroke input)
-        (downstroke physics) (downstroke engine)
+        (downstroke physics) (downstroke overlap) (downstroke engine)
         (only (downstroke sdl2) render-draw-color-set! render-fill-rect! make-rect))
 (include-relative "common.scm")
 
@@ -39,22 +39,9 @@
     (entity-set (entity-set ship #:x (clamp 0 (+ (entity-ref ship #:x) dx) (- width 14)))
                 #:y (clamp 0 (+ (entity-ref ship #:y) dy) (- height 14)))))
 
-(define (touching e others)
-  (let loop ((os others))
-    (and (pair? os)
-         (let ((o (car os)))
-           (or (aabb-overlap? (entity-ref e #:x) (entity-ref e #:y)
-                              (entity-ref e #:width) (entity-ref e #:height)
-                              (entity-ref o #:x) (entity-ref o #:y)
-                              (entity-ref o #:width) (entity-ref o #:height))
-               (loop (cdr os)))))))
-
-;; How many of the enemies touch a bullet.
-(define (hits enemies bullets)
-  (let loop ((es enemies) (n 0))
-    (cond ((null? es) n)
-          ((touching (car es) bullets) (loop (cdr es) (+ n 1)))
-          (else (loop (cdr es) n)))))
+(define (in? e pairs side)
+  (let loop ((ps pairs))
+    (and (pair? ps) (or (eq? e (side (car ps))) (loop (cdr ps))))))
 
 (define (off-screen? e)
   (or (< (entity-ref e #:y) -20) (> (entity-ref e #:y) height)))
@@ -75,16 +62,16 @@
                     scene))
          (bullets (scene-find-all-tagged scene 'bullet))
          (enemies (scene-find-all-tagged scene 'enemy))
-         ;; a bullet and the enemy it hits both go
+         ;; every (bullet . enemy) that touch: both go
+         (hits (overlapping-pairs bullets enemies))
          (scene (scene-remove-entities
                  scene (lambda (e)
-                         (or (off-screen? e)
-                             (and (eq? (entity-type e) 'bullet) (touching e enemies))
-                             (and (eq? (entity-type e) 'enemy) (touching e bullets))))))
+                         (or (off-screen? e) (in? e hits car) (in? e hits cdr)))))
          (scene (if (zero? (modulo frame wave-every))
                     (spawn-wave scene (quotient frame wave-every))
                     scene)))
-    (game-asset-set! game 'score (+ (game-asset game 'score) (hits enemies bullets)))
+    (game-asset-set! game 'score (+ (game-asset game 'score)
+                                    (foldl (lambda (n e) (if (in? e hits cdr) (+ n 1) n)) 0 enemies)))
     (game-scene-set! game scene)))
 
 (define game

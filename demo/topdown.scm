@@ -5,7 +5,7 @@
 ;;; the player's start and the coins. Walk into a coin to pick it up.
 (import scheme (chicken base) (chicken format) (chicken condition)
         (downstroke srfi-197) (downstroke entity) (downstroke scene)
-        (downstroke tilemap) (downstroke physics) (downstroke input)
+        (downstroke tilemap) (downstroke physics) (downstroke overlap) (downstroke input)
         (downstroke renderer) (downstroke sound) (downstroke engine))
 (include-relative "common.scm")
 
@@ -45,16 +45,12 @@
 (define (objects-of-type objects type)
   (foldr (lambda (o keep) (if (equal? (object-type o) type) (cons o keep) keep)) '() objects))
 
-(define (touching? a b)
-  (aabb-overlap? (entity-ref a #:x) (entity-ref a #:y) (entity-ref a #:width) (entity-ref a #:height)
-                 (entity-ref b #:x) (entity-ref b #:y) (entity-ref b #:width) (entity-ref b #:height)))
-
 (define (update game dt)
   (let* ((scene (scene-map-entities (game-scene game)
                                     (lambda (s e) (walk (game-input game) e (game-frame game)))))
          (player (scene-find-tagged scene 'player))
          (coins (game-asset game 'coins))
-         (left (foldr (lambda (c keep) (if (touching? player c) keep (cons c keep))) '() coins)))
+         (left (foldr (lambda (c keep) (if (entity-overlap? player c) keep (cons c keep))) '() coins)))
     (unless (= (length left) (length coins))
       (when (audio-open?) (play-sound 'coin)))
     (game-asset-set! game 'coins left)

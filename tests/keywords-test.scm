@@ -7,7 +7,7 @@
         (downstroke test) (downstroke keywords)
         (downstroke decode) (downstroke engine) (downstroke input)
         (downstroke tilemap) (downstroke prefabs) (downstroke renderer) (downstroke scene)
-        (downstroke sdl2) (downstroke sound) (downstroke text) (downstroke tween))
+        (downstroke sdl2) (downstroke sound) (downstroke text) (downstroke tween) (downstroke overlap))
 
 (define (kw-message thunk)
   (handle-exceptions e ((condition-property-accessor 'exn 'message "") e) (thunk) "no error"))
@@ -49,7 +49,9 @@
    (list "sprite-text-size" (lambda () (sprite-text-size #f "t" scal: 2)) "scale:")
    (list "draw-sprite-text!" (lambda () (draw-sprite-text! #f #f "t" 0 0 scal: 2)) "scale:")
    (list "load-tileset" (lambda () (load-tileset "t.tsx" first-git: 1)) "first-gid:")
-   (list "make-tween" (lambda () (make-tween '() duraton: 10)) "duration:")))
+   (list "make-tween" (lambda () (make-tween '() duraton: 10)) "duration:")
+   (list "camera-shake" (lambda () (camera-shake (make-camera) 2 decy: 1/2)) "decay:")
+   (list "scene-overlapping" (lambda () (scene-overlapping (make-scene) '() wher: #f)) "where:")))
 
 (test-group "keywords: an unknown keyword names the procedure and the nearest one"
   (for-each
@@ -60,16 +62,16 @@
                          (substring-index (string-append (car c) ": unknown keyword ") msg)
                          (substring-index (string-append "(did you mean " (caddr c) "?)") msg)))))
    kw-cases)
-  (test "35 procedures checked" 35 (length kw-cases)))
+  (test "37 procedures checked" 37 (length kw-cases)))
 
 (test-group "keywords: the other mistakes with keywords"
   (test "a keyword with no value" "make-game: keyword width: has no value"
         (kw-message (lambda () (make-game width:))))
   (test "a value where a keyword goes"
-        "make-camera: expected a keyword, got 3 (keywords: x: y:)"
+        "make-camera: expected a keyword, got 3 (keywords: x: y: deadzone: follow-rate: bounds: zoom:)"
         (kw-message (lambda () (make-camera 3))))
   (test "nothing near: the valid keywords are listed"
-        "make-camera: unknown keyword colour: (keywords: x: y:)"
+        "make-camera: unknown keyword colour: (keywords: x: y: deadzone: follow-rate: bounds: zoom:)"
         (kw-message (lambda () (make-camera colour: 1))))
   (test "two equally near ones are both named"
         "make-camera: unknown keyword z: (did you mean x: or y:?)"

@@ -243,8 +243,18 @@
     (test "one immovable, equal centres: the later mover goes negative" '(-10 0)
           (at (cadr r) #:y #:vy)))
   (let ((r (pair-result (box 10 0 #:vy 1)
+                        (ent #:solid? #t #:immovable? #t #:vx 3 #:x 0 #:y 9 #:width 48 #:height 8
+                             #:frame-start '(-3 . 9)))))
+    (test "a rider pushed up off an immovable is carried by its displacement this frame" '(13 -1 0)
+          (at (car r) #:x #:y #:vy)))
+  (let ((r (pair-result (box 10 0 #:vy 1)
+                        (ent #:solid? #t #:immovable? #t #:vx 3 #:x 0 #:y 9 #:width 48 #:height 8
+                             #:frame-start '(0 . 9)))))
+    (test "a platform that did not move carries nothing, whatever its #:vx" '(10 -1 0)
+          (at (car r) #:x #:y #:vy)))
+  (let ((r (pair-result (box 10 0 #:vy 1)
                         (ent #:solid? #t #:immovable? #t #:vx 3 #:x 0 #:y 9 #:width 48 #:height 8))))
-    (test "a rider pushed up off a moving immovable is carried by its vx" '(13 -1 0)
+    (test "without #:frame-start (no record-frame-start step), nothing is carried" '(10 -1 0)
           (at (car r) #:x #:y #:vy)))
   (let ((es (list (box 0 0) (box 8 0) (box 18 0))))
     (test "pairs in order, each seeing earlier pushes"

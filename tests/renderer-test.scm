@@ -137,6 +137,21 @@
                                                        #:color '(200 0 0 128)))))))
     (test-assert "a colour's alpha blends" (<= 98 (car (px 1 1)) 102))))
 
+(test-group "renderer: a zoomed camera"
+  (let ((px (rn-draw (make-scene background: rn-bg camera: (make-camera x: 4 y: 2 zoom: 2)
+                                 entities: (list (list #:x 12 #:y 5 #:width 6 #:height 4
+                                                       #:color '(200 100 50)))))))
+    (test "zoom 2: the top-left corner at twice its position minus the camera" '(200 100 50 255) (px 16 6))
+    (test "and the box twice as large" '(200 100 50 255) (px 27 13))
+    (test "nothing past it" (list rn-bg-pixel rn-bg-pixel) (list (px 28 13) (px 27 14)))
+    (test "nothing before it" (list rn-bg-pixel rn-bg-pixel) (list (px 15 6) (px 16 5))))
+  (let* ((scene (make-scene background: rn-bg camera: (make-camera x: 4 y: 2 zoom: 2)
+                            entities: (list (list #:x 12 #:y 5 #:width 6 #:height 4 #:color '(9 9 9)))))
+         (ignored (rn-draw scene))
+         (px (rn-draw (update-scene scene camera: (make-camera x: 4 y: 2)))))
+    (test "the renderer's scale is restored: the next unzoomed frame is drawn at 1:1"
+          (list '(9 9 9 255) rn-bg-pixel) (list (px 13 6) (px 14 6)))))
+
 (test-group "renderer: tiles"
   (let* ((tm (rn-map "one.tmx" 6 4 (list (cons (rn-grid 6 4 '(3 1 2)) ""))))
          (px (rn-draw (rn-map-scene tm 5 3) textures: rn-textures)))
