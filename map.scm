@@ -12,7 +12,12 @@
 ;;; Collision asks one question of a cell, "is it solid?", and that answer is
 ;;; precomputed once per map into a single byte grid merged from every
 ;;; colliding tile layer (those nested in groups included), using the
-;;; flag-free gid: a cell is solid when that gid is not 0.
+;;; flag-free gid: a cell is solid when that gid is not 0. A cell is
+;;; one-way instead (a jump-through platform: only its top stops a body,
+;;; and only one falling onto it) when its tile has the bool property
+;;; `one-way` set in its tileset, or its layer has the layer property
+;;; `one-way` set; a solid tile of any other layer in the same cell wins.
+;;; The grid holds 0 (empty), 1 (solid) or 2 (one-way).
 ;;;
 ;;; Which layers collide: every tile layer, unless the layer has the property
 ;;; `collides` set to #f (a bool property; the string "false" or the int 0
@@ -51,7 +56,7 @@
    tilemap-width tilemap-height tilemap-tile-width tilemap-tile-height
    tilemap-pixel-width tilemap-pixel-height tilemap-origin-col tilemap-origin-row
    tilemap-layers tilemap-layer tilemap-properties
-   tilemap-tile-at tilemap-cell-at tilemap-flags-at tilemap-solid? tilemap-solid-grid
+   tilemap-tile-at tilemap-cell-at tilemap-flags-at tilemap-solid? tilemap-one-way? tilemap-solid-grid
    ;; map attributes
    tilemap-source tilemap-version tilemap-tiled-version tilemap-class
    tilemap-orientation tilemap-render-order tilemap-infinite?
@@ -98,7 +103,7 @@
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
           (chicken string) (chicken file) (only (chicken file posix) regular-file?) srfi-4
-          (only (downstroke util) filter append-map any list-min list-max string-concatenate
+          (only (downstroke util) filter filter-map append-map any list-min list-max string-concatenate
                 make-hash-table hash-table-ref/default hash-table-set!
                 hash-table-exists?))
 
@@ -169,6 +174,9 @@
   (define (layer-collides? layer)
     (let ((p (assoc "collides" (layer-properties layer))))
       (not (and p (not (cdr p))))))
+
+  (define (layer-one-way? layer)
+    (eq? #t (property-ref (layer-properties layer) "one-way" #f)))
 
   (define-record-type image
     (make-image source width height trans)
@@ -402,22 +410,46 @@
     (let ((ts (tilemap-tileset-for tm gid)))
       (and ts (tileset-tile ts (- (cell-gid gid) (tileset-first-gid ts))))))
 
-  (define (solid-grid width height layers)
+  ;; The gids of the tilesets' tiles marked one-way, plus `extra`, as a
+  ;; table (#f when there are none).
+  (define (one-way-gids tilesets extra)
+    (let ((gids (append extra
+                        (append-map (lambda (ts)
+                                      (filter-map (lambda (t)
+                                                    (and (eq? #t (property-ref (tile-properties t) "one-way" #f))
+                                                         (+ (tileset-first-gid ts) (tile-id t))))
+                                                  (tileset-tiles ts)))
+                                    tilesets))))
+      (and (pair? gids)
+           (let ((table (make-hash-table)))
+             (for-each (lambda (g) (hash-table-set! table g #t)) gids)
+             table))))
+
+  (define (solid-grid width height layers tilesets extra-one-way)
     (let* ((n (* width height))
-           (grid (make-u8vector n 0)))
+           (grid (make-u8vector n 0))
+           (one-way (one-way-gids tilesets extra-one-way)))
       (for-each
        (lambda (layer)
          (when (layer-collides? layer)
            (let ((data (layer-data layer)))
-             (do ((i 0 (fx+ i 1))) ((fx= i n))
-               (unless (fx= 0 (fxand (u32vector-ref data i) gid-mask))
-                 (u8vector-set! grid i 1))))))
+             (if (or one-way (layer-one-way? layer))
+                 (let ((all? (layer-one-way? layer)))
+                   (do ((i 0 (fx+ i 1))) ((fx= i n))
+                     (let ((g (fxand (u32vector-ref data i) gid-mask)))
+                       (unless (fx= 0 g)
+                         (cond ((not (or all? (and one-way (hash-table-ref/default one-way g #f))))
+                                (u8vector-set! grid i 1))
+                               ((fx= 0 (u8vector-ref grid i)) (u8vector-set! grid i 2)))))))
+                 (do ((i 0 (fx+ i 1))) ((fx= i n))
+                   (unless (fx= 0 (fxand (u32vector-ref data i) gid-mask))
+                     (u8vector-set! grid i 1)))))))
        layers)
       grid))
 
   (define (make-tilemap width height tile-width tile-height layers
                         #!key (properties '()) (origin-col 0) (origin-row 0)
-                        (info '()) (tilesets '()) (layer-tree layers))
+                        (info '()) (tilesets '()) (layer-tree layers) (one-way '()))
     (for-each
      (lambda (layer)
        (unless (and (eq? (layer-kind layer) 'tile)
@@ -431,11 +463,13 @@
                  (fixnum? tile-height) (fx> tile-height 0))
       (error 'make-tilemap "tile size must be positive integers" tile-width tile-height))
     (%make-tilemap width height tile-width tile-height layers properties
-                   (solid-grid width height layers) origin-col origin-row
+                   (solid-grid width height layers tilesets one-way) origin-col origin-row
                    info tilesets layer-tree))
 
   ;; A one-layer map from rows of tile ids: procedural levels, tests, the REPL.
-  (define/keywords (list->tilemap rows #!key (tile-width 16) (tile-height 16) (name "tiles"))
+  ;; one-way: the tile ids that are one-way platforms.
+  (define/keywords (list->tilemap rows #!key (tile-width 16) (tile-height 16) (name "tiles")
+                                  (one-way '()))
     (let* ((height (length rows))
            (width (if (null? rows) 0 (length (car rows))))
            (data (make-u32vector (* width height) 0)))
@@ -453,7 +487,8 @@
               (fill (cdr cells) (+ i 1))))
           (loop (cdr rows) (+ j 1))))
       (make-tilemap width height tile-width tile-height
-                    (list (make-layer name width height data)))))
+                    (list (make-layer name width height data))
+                    one-way: one-way)))
 
   (define (tilemap-pixel-width tm) (* (tilemap-width tm) (tilemap-tile-width tm)))
   (define (tilemap-pixel-height tm) (* (tilemap-height tm) (tilemap-tile-height tm)))
@@ -515,10 +550,16 @@
   (define (tilemap-flags-at tm col row #!optional (which 0))
     (cell-flags (cell-ref 'tilemap-flags-at tm col row which)))
 
-  ;; Whether any colliding layer has a tile at the cell; outside is empty.
+  ;; Whether any colliding layer has a solid tile at the cell; outside is
+  ;; empty.
   (define (tilemap-solid? tm col row)
     (let ((i (cell-index 'tilemap-solid? tm col row)))
       (and i (fx= 1 (u8vector-ref (tilemap-solid-grid tm) i)))))
+
+  ;; Whether the cell is a one-way platform (and not solid).
+  (define (tilemap-one-way? tm col row)
+    (let ((i (cell-index 'tilemap-one-way? tm col row)))
+      (and i (fx= 2 (u8vector-ref (tilemap-solid-grid tm) i)))))
 
   ;;; ------------------------------------------------------------------
   ;;; Properties

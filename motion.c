@@ -36,10 +36,14 @@ static long ds_last(long n, long d, long size, long tile) {
    byte line*ls + cell*cs, both counted from the map's origin. A stop is
    always a whole pixel. */
 static int ds_tile_stop(long v, long pn, long pd, long size, long an, long ad, long across_size,
-                        int swept, long tile, long tile_across, const unsigned char *bytes,
+                        int swept, int one_way, long tile, long tile_across, const unsigned char *bytes,
                         long ls, long cs, long line_origin, long cell_origin,
                         long line_count, long cell_count, long *stop)
 {
+  /* one_way: one-way cells (byte 2) count where their line's top is at or
+     below the body's bottom at the start of the motion, (pn - v pd)/pd +
+     size, here in units of 1/pd */
+  long start_bottom = one_way ? pn - v * pd + size * pd : 0;
   int forward = v > 0;
   long l0 = ds_first(pn, pd, tile), l1 = ds_last(pn, pd, size, tile);
   long lo = ds_max(ds_first(an, ad, tile_across) - cell_origin, 0);
@@ -58,7 +62,8 @@ static int ds_tile_stop(long v, long pn, long pd, long size, long an, long ad, l
   for (line = from; ; line += forward ? 1 : -1) {
     const unsigned char *base = bytes + line * ls;
     for (cell = lo; cell <= hi; cell++)
-      if (base[cell * cs] == 1) {
+      if (base[cell * cs] &&
+          (base[cell * cs] == 1 || (one_way && (line + line_origin) * tile * pd >= start_bottom))) {
         long at = line + line_origin;
         *stop = forward ? at * tile - size : (at + 1) * tile;
         return 1;
@@ -67,11 +72,12 @@ static int ds_tile_stop(long v, long pn, long pd, long size, long an, long ad, l
   }
 }
 
-static int ds_solid(const unsigned char *bytes, long cols, long rows, long col0, long row0,
-                    long col, long row)
+/* The grid byte of a cell: 0 outside the map. */
+static int ds_cell(const unsigned char *bytes, long cols, long rows, long col0, long row0,
+                   long col, long row)
 {
   long c = col - col0, r = row - row0;
-  return c >= 0 && c < cols && r >= 0 && r < rows && bytes[r * cols + c] == 1;
+  return c >= 0 && c < cols && r >= 0 && r < rows ? bytes[r * cols + c] : 0;
 }
 
 /* map is #(cols rows col0 row0 tile-width tile-height). */
@@ -134,7 +140,7 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
   long x2n = xn + vx * xd, x2d = xd, y2n, y2d = yd, stop;
   int x_stopped = 0, y_stopped = 0, writes = 0;
   if (has_map && vx != 0 &&
-      ds_tile_stop(vx, x2n, x2d, w, yn, yd, h, swept, tw, th, bytes, 1, cols, col0, row0, cols, rows,
+      ds_tile_stop(vx, x2n, x2d, w, yn, yd, h, swept, 0, tw, th, bytes, 1, cols, col0, row0, cols, rows,
                    &stop)) {
     x_stopped = 1;
     x2n = stop;
@@ -142,21 +148,21 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
   }
   y2n = yn + vy * yd;
   if (has_map && vy != 0 &&
-      ds_tile_stop(vy, y2n, y2d, h, x2n, x2d, w, swept, th, tw, bytes, cols, 1, row0, col0, rows, cols,
-                   &stop)) {
+      ds_tile_stop(vy, y2n, y2d, h, x2n, x2d, w, swept, vy > 0 && !(flags & DS_DROP), th, tw, bytes,
+                   cols, 1, row0, col0, rows, cols, &stop)) {
     y_stopped = 1;
     y2n = stop;
     y2d = 1;
   }
   if (!((flags & DS_HAS_X) && xn == x2n && xd == x2d)) {
     C_set_block_item(out, 0, C_fix(x2n));
-    C_set_block_item(out, 6, C_fix(x2d));
     writes |= DS_WRITE_X;
+    if (x2d != 1) { C_set_block_item(out, 6, C_fix(x2d)); writes |= DS_X_RATIO; }
   }
   if (!((flags & DS_HAS_Y) && yn == y2n && yd == y2d)) {
     C_set_block_item(out, 1, C_fix(y2n));
-    C_set_block_item(out, 7, C_fix(y2d));
     writes |= DS_WRITE_Y;
+    if (y2d != 1) { C_set_block_item(out, 7, C_fix(y2d)); writes |= DS_Y_RATIO; }
   }
   if (x_stopped && !((flags & DS_HAS_VX) && vx == 0)) {
     C_set_block_item(out, 2, C_fix(0));
@@ -172,10 +178,13 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
   }
   if ((flags & DS_GROUND) && grav) {   /* the row one pixel below the feet */
     long row = ds_floor_div(y2n + (h + 1) * y2d, y2d * th);
-    long c0 = ds_first(x2n, x2d, tw), c1 = ds_last(x2n, x2d, w, tw);
-    C_word ground = C_mk_bool(has_map &&
-                              (ds_solid(bytes, cols, rows, col0, row0, c0, row) ||
-                               ds_solid(bytes, cols, rows, col0, row0, ds_max(c0, c1), row)));
+    long c0 = ds_first(x2n, x2d, tw), c1 = ds_max(c0, ds_last(x2n, x2d, w, tw));
+    int b0 = has_map ? ds_cell(bytes, cols, rows, col0, row0, c0, row) : 0;
+    int b1 = has_map && b0 != 1 ? ds_cell(bytes, cols, rows, col0, row0, c1, row) : 0;
+    /* a one-way tile holds a body whose bottom is at or above its top */
+    C_word ground = C_mk_bool(b0 == 1 || b1 == 1 ||
+                              ((b0 == 2 || b1 == 2) && !(flags & DS_DROP) &&
+                               y2n + h * y2d <= row * th * y2d));
     if (!((flags & DS_HAS_ON) && on == ground)) { C_set_block_item(out, 5, ground); writes |= DS_WRITE_ON; }
   }
   return C_fix(writes);

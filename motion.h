@@ -13,15 +13,16 @@ enum {
   DS_GROUND = 8,        /* ground detection joins the pass */
   DS_HAS_X = 16, DS_HAS_Y = 32, DS_HAS_VX = 64, DS_HAS_VY = 128,
   DS_HAS_AY = 256, DS_HAS_ON = 512,   /* the key is present */
-  DS_NOT_HERE = 1024    /* an unknown #:collision-mode: not for the kernel */
+  DS_NOT_HERE = 1024,   /* an unknown #:collision-mode: not for the kernel */
+  DS_DROP = 2048        /* #:drop-through?: one-way tiles do not hold it */
 };
 
-/* the keys to write; their new values are out[0] .. out[5] in this order,
-   x and y as numerator and denominator: x is out[0] / out[6], y is
-   out[1] / out[7] */
+/* the keys to write; their new values are out[0] .. out[5] in this order.
+   With DS_X_RATIO the new x is the rational out[0] / out[6], with
+   DS_Y_RATIO y is out[1] / out[7]. */
 enum {
   DS_WRITE_X = 1, DS_WRITE_Y = 2, DS_WRITE_VX = 4, DS_WRITE_VY = 8,
-  DS_WRITE_AY = 16, DS_WRITE_ON = 32
+  DS_WRITE_AY = 16, DS_WRITE_ON = 32, DS_X_RATIO = 64, DS_Y_RATIO = 128
 };
 
 #endif

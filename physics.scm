@@ -164,7 +164,10 @@
     (line-origin grid-line-origin) (cell-origin grid-cell-origin)
     (line-count grid-line-count) (cell-count grid-cell-count))
 
-  (define (nearest-solid-line g from to step lo hi)
+  ;; A one-way cell (grid byte 2) counts only when `one-way-top` is a
+  ;; number and the cell's line starts at or past it (lines of `tile` px):
+  ;; the top of a jump-through platform that a falling body was above.
+  (define (nearest-solid-line g from to step lo hi #!optional one-way-top tile)
     (let* ((lo (max (- lo (grid-cell-origin g)) 0))
            (hi (min (- hi (grid-cell-origin g)) (- (grid-cell-count g) 1)))
            (from (- from (grid-line-origin g)))
@@ -183,7 +186,10 @@
                  (let next-cell ((cell lo))
                    (cond ((fx> cell hi)
                           (and (not (fx= line to)) (next-line (fx+ line step))))
-                         ((fx= 1 (u8vector-ref bytes (fx+ base (fx* cell cell-stride))))
+                         ((let ((b (u8vector-ref bytes (fx+ base (fx* cell cell-stride)))))
+                            (or (fx= b 1)
+                                (and (fx= b 2) one-way-top
+                                     (>= (* (+ line (grid-line-origin g)) tile) one-way-top))))
                           (+ line (grid-line-origin g)))
                          (else (next-cell (fx+ cell 1)))))))))))
 
@@ -208,15 +214,22 @@
                                 (fixnum? (tilemap-origin-col tm)) (fixnum? (tilemap-origin-row tm))
                                 (vector (tilemap-width tm) (tilemap-height tm)
                                         (tilemap-origin-col tm) (tilemap-origin-row tm)
-                                        (tilemap-tile-width tm) (tilemap-tile-height tm))))))
+                                        (tilemap-tile-width tm) (tilemap-tile-height tm)))
+                           (has-one-way? bytes))))
             (set! last-grids (cons tm v))
             v))))
+
+  (define (has-one-way? bytes)
+    (let loop ((i (fx- (u8vector-length bytes) 1)))
+      (and (fx>= i 0) (or (fx= 2 (u8vector-ref bytes i)) (loop (fx- i 1))))))
 
   (define (column-grid tm) (vector-ref (grids tm) 0))
   (define (row-grid tm) (vector-ref (grids tm) 1))
   ;; #(cols rows origin-col origin-row tile-width tile-height), or #f for a
   ;; map whose size or origin is not a fixnum (the C code cannot take it).
   (define (pass-map tm) (vector-ref (grids tm) 2))
+  ;; Whether the map has one-way cells at all.
+  (define (one-way-map? tm) (vector-ref (grids tm) 3))
 
   ;;; Per-entity steps, in pipeline order
 
@@ -297,27 +310,30 @@
 
   ;; One tile pass on one axis, for a body at `pos` of `size` with velocity
   ;; v (not 0), spanning across..across+across-size on the other axis:
-  ;; where it stops, or #f when no solid tile is in its way. `moved` is #f
-  ;; in discrete mode; in swept mode, how far the velocity step moved the
-  ;; body this frame (v, or 0 when the body skips that step: a sweep covers
-  ;; only the motion made this frame).
-  (define (tile-stop v pos size across across-size moved tile tile-across grid)
+  ;; where it stops, or #f when no solid tile is in its way. `moved` is how
+  ;; far the velocity step moved the body this frame (v, or 0 when the body
+  ;; skips that step), so pos - moved is where the frame's motion started.
+  ;; swept: the scan starts there (a sweep covers only the motion made this
+  ;; frame). one-way?: one-way tiles whose top the body's bottom was at or
+  ;; above at that start count too (the y pass of a falling body).
+  (define (tile-stop v pos size across across-size swept moved one-way? tile tile-across grid)
     ;; swept: from the line the leading edge was in before the move. Only
     ;; the leading edge counts, so a body leaving a wall it touched is not
     ;; caught by that wall when pos - v rounds (flonums) to just inside it.
     ;; (A zero-size body on a tile edge covers no line: its leading line is
     ;; the one it moves into.)
-    (let ((l0 (span-first pos tile)) (l1 (span-last pos size tile))
-          (c0 (span-first across tile-across)) (c1 (span-last across across-size tile-across))
-          (start (and moved (- pos moved))))
+    (let* ((l0 (span-first pos tile)) (l1 (span-last pos size tile))
+           (c0 (span-first across tile-across)) (c1 (span-last across across-size tile-across))
+           (start (- pos moved))
+           (one-way-top (and one-way? (+ start size))))
       (let ((line (if (> v 0)
                       (nearest-solid-line grid
-                                          (if start
+                                          (if swept
                                               (min (max (span-first start tile) (span-last start size tile)) l0)
                                               l0)
-                                          l1 1 c0 c1)
+                                          l1 1 c0 c1 one-way-top tile)
                       (nearest-solid-line grid
-                                          (if start
+                                          (if swept
                                               (max (min (span-first start tile) (span-last start size tile)) l1)
                                               l1)
                                           l0 -1 c0 c1))))
@@ -325,7 +341,8 @@
 
   ;; Both tile passes: pos-key is the axis resolved, across-key the other,
   ;; velocity-step the skip symbol of the step that moves pos-key. A
-  ;; velocity of 0 snaps nothing.
+  ;; velocity of 0 snaps nothing. A body with #:drop-through? falls
+  ;; through one-way tiles.
   (define (resolve-tiles entity swept pos-key size-key vel-key velocity-step across-key across-size-key
                          tile tile-across grid)
     (let ((v (num entity vel-key)))
@@ -333,7 +350,8 @@
           entity
           (let ((stop (tile-stop v (num entity pos-key) (num entity size-key)
                                  (num entity across-key) (num entity across-size-key)
-                                 (and swept (if (entity-skips-pipeline? entity velocity-step) 0 v))
+                                 swept (if (entity-skips-pipeline? entity velocity-step) 0 v)
+                                 (and (eq? pos-key #:y) (> v 0) (not (entity-ref entity #:drop-through? #f)))
                                  tile tile-across grid)))
             (if stop
                 (entity-set* entity pos-key stop vel-key 0)
@@ -454,12 +472,15 @@
   (define-kernel-flag flag-ay DS_HAS_AY 256)
   (define-kernel-flag flag-on DS_HAS_ON 512)
   (define-kernel-flag flag-not-here DS_NOT_HERE 1024)
+  (define-kernel-flag flag-drop DS_DROP 2048)
   (define-kernel-flag write-x DS_WRITE_X 1)
   (define-kernel-flag write-y DS_WRITE_Y 2)
   (define-kernel-flag write-vx DS_WRITE_VX 4)
   (define-kernel-flag write-vy DS_WRITE_VY 8)
   (define-kernel-flag write-ay DS_WRITE_AY 16)
   (define-kernel-flag write-on DS_WRITE_ON 32)
+  (define-kernel-flag x-ratio DS_X_RATIO 64)
+  (define-kernel-flag y-ratio DS_Y_RATIO 128)
 
   (define fixnum-motion!
     (foreign-lambda scheme-object "ds_fixnum_motion" scheme-object u8vector scheme-object
@@ -467,11 +488,14 @@
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object))
 
-  ;; The kernel's answer n / d for a position: out[n-slot] / out[d-slot], in
-  ;; lowest terms already, so the ratnum is made without a gcd.
-  (define-inline (ratio out n-slot d-slot)
-    (let ((n (vector-ref out n-slot)) (d (vector-ref out d-slot)))
-      (if (eq? d 1) n (##core#inline_allocate ("C_a_i_ratnum" 3) n d))))
+  ;; The kernel's answer for a position: 'keep, out[n-slot], or with the
+  ;; ratio bit the rational out[n-slot] / out[d-slot], in lowest terms
+  ;; already, so the ratnum is made without a gcd.
+  (define (kernel-position out writes write-bit ratio-bit n-slot d-slot)
+    (cond ((fx= 0 (fxand writes write-bit)) 'keep)
+          ((fx= 0 (fxand writes ratio-bit)) (vector-ref out n-slot))
+          (else (##core#inline_allocate ("C_a_i_ratnum" 3) (vector-ref out n-slot)
+                                        (vector-ref out d-slot)))))
 
   ;; What the C code is given in a scene without a map (it reads neither).
   (define no-grid (make-u8vector 0))
@@ -492,6 +516,7 @@
            (map? (and map-data #t))
            (bytes (if map? (tilemap-solid-grid tm) no-grid))
            (map (or map-data no-map))
+           (one-way? (and map? (one-way-map? tm)))
            ;; the bits of fixnum-motion!'s flags the scene decides
            (scene-flags (fxior (if map? flag-map 0)
                                (fxior (if (and map? (swept-mode? scene '() #f)) flag-swept 0)
@@ -509,7 +534,7 @@
           (lambda (e)
             (entity-let e ((xp #:x) (yp #:y) (wp #:width) (hp #:height) (vxp #:vx) (vyp #:vy)
                            (ayp #:ay) (gp #:gravity?) (skipp #:skip-pipelines)
-                           (modep #:collision-mode) (onp #:on-ground?))
+                           (modep #:collision-mode) (onp #:on-ground?) (dropp #:drop-through?))
               (let ((grav (and gp (cdr gp)))
                     (x (if xp (cdr xp) 0)) (y (if yp (cdr yp) 0))
                     (w (if wp (cdr wp) 0)) (h (if hp (cdr hp) 0))
@@ -520,7 +545,8 @@
                 ;; that CHICKEN makes no closures here (see above).
                 (let* ((flags (fxior
                                ;; an unknown mode is the tile steps' error to raise
-                               (fxior (if own own-mode-flags scene-flags)
+                               (fxior (fxior (if own own-mode-flags scene-flags)
+                                             (if (and one-way? dropp (cdr dropp)) flag-drop 0))
                                       (fxior (if (eq? own 'swept) flag-swept 0)
                                              (if (memq own '(#f swept discrete)) 0 flag-not-here)))
                                (fxior (fxior (if grav flag-gravity 0) (if xp flag-x 0))
@@ -531,10 +557,18 @@
                                                x y w h vx vy ay (and onp (cdr onp)))))
                   (cond ((fx= writes 0) e)
                         ((fx< writes 0) (general e))
-                        (else
+                        ((fx= 0 (fxand writes (fxior x-ratio y-ratio)))
                          (rewrite-motion e grav
-                                         xp (if (fx= 0 (fxand writes write-x)) 'keep (ratio out 0 6))
-                                         yp (if (fx= 0 (fxand writes write-y)) 'keep (ratio out 1 7))
+                                         xp (if (fx= 0 (fxand writes write-x)) 'keep (vector-ref out 0))
+                                         yp (if (fx= 0 (fxand writes write-y)) 'keep (vector-ref out 1))
+                                         vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
+                                         vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
+                                         ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
+                                         onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))
+                        (else                   ; a rational position
+                         (rewrite-motion e grav
+                                         xp (kernel-position out writes write-x x-ratio 0 6)
+                                         yp (kernel-position out writes write-y y-ratio 1 7)
                                          vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
                                          vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
                                          ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
@@ -543,12 +577,17 @@
   ;; Tile ground: the row one pixel below the feet, (+ y h 1), under either
   ;; lower corner. The corners are the first and last columns the body
   ;; covers; a zero-width body on a tile edge probes the one column at x.
-  (define (tile-ground? tm x y w h)
-    (let ((row (cell-of (+ y h 1) (tilemap-tile-height tm))))
-      (let ((c0 (span-first x (tilemap-tile-width tm)))
-            (c1 (span-last x w (tilemap-tile-width tm))))
-        (or (tilemap-solid? tm c0 row)
-            (tilemap-solid? tm (max c0 c1) row)))))
+  ;; A one-way tile there counts when the body's bottom is at or above its
+  ;; top and the body is not dropping through.
+  (define (tile-ground? tm x y w h drop?)
+    (let* ((th (tilemap-tile-height tm))
+           (row (cell-of (+ y h 1) th))
+           (c0 (span-first x (tilemap-tile-width tm)))
+           (c1 (max c0 (span-last x w (tilemap-tile-width tm))))
+           (platform? (and (not drop?) (<= (+ y h) (* row th)))))
+      (or (tilemap-solid? tm c0 row)
+          (tilemap-solid? tm c1 row)
+          (and platform? (or (tilemap-one-way? tm c0 row) (tilemap-one-way? tm c1 row))))))
 
   ;; Entity ground: a solid entity other than the mover that overlaps it
   ;; horizontally, whose top is within the contact tolerance of the mover's
@@ -569,7 +608,11 @@
                            (< x (+ (num s #:x) (num s #:width)))
                            (< (num s #:x) (+ x w))
                            (<= (abs (- (num s #:y) bottom))
-                               *entity-ground-contact-tolerance*))
+                               *entity-ground-contact-tolerance*)
+                           ;; a one-way platform holds no one rising through
+                           ;; it or dropping through it
+                           (or (not (entity-ref s #:one-way? #f))
+                               (and (>= vy 0) (not (entity-ref entity #:drop-through? #f)))))
                       (loop (cdr solids))))))))
 
   ;; The contract's ground detection, reading the entity in one walk.
@@ -581,7 +624,8 @@
           (let* ((read (lambda (p key) (read-number entity p key)))
                  (tm (scene-tilemap scene))
                  (ground? (or (and tm (tile-ground? tm (read xp #:x) (read yp #:y)
-                                                    (read wp #:width) (read hp #:height)))
+                                                    (read wp #:width) (read hp #:height)
+                                                    (entity-ref entity #:drop-through? #f)))
                               (entity-ground? entity (scene-solid-entities scene)
                                               (read xp #:x) (read wp #:width)
                                               (+ (read yp #:y) (read hp #:height))
@@ -744,6 +788,23 @@
   (define-inline (flag e key)
     (let ((p (assq key e))) (and p (cdr p))))
 
+  ;; A one-way entity (#:one-way?) is a jump-through platform, never
+  ;; pushed: it stops only a mover falling onto it (vy > 0) whose bottom,
+  ;; before this frame's velocity step, was at or above the platform's top
+  ;; at the start of the frame (#:frame-start, else where it is). The mover
+  ;; is put on its top with #:vy 0 and carried like any rider; from below
+  ;; and from the side it passes through, and so does a mover with
+  ;; #:drop-through?.
+  (define (land-on-one-way mover platform)
+    (let* ((vy (num mover #:vy))
+           (start (flag platform #:frame-start))
+           (top (if (pair? start) (cdr start) (num platform #:y))))
+      (if (and (> vy 0)
+               (not (flag mover #:drop-through?))
+               (<= (+ (- (num mover #:y) vy) (num mover #:height)) top))
+          (carry (entity-set* mover #:y (- (num platform #:y) (num mover #:height)) #:vy 0) platform)
+          mover)))
+
   ;; resolve-pair for two entities known to collide (solid, not skipping):
   ;; the pass below checks that once per entity, not once per pair.
   (define (resolve-colliding-pair a b)
@@ -752,7 +813,9 @@
         (if (boxes-overlap? ax ay aw ah bx by bw bh)
             (let ((a-fixed (flag a #:immovable?))
                   (b-fixed (flag b #:immovable?)))
-              (cond ((and a-fixed b-fixed) (values a b))
+              (cond ((flag a #:one-way?) (if (or b-fixed (flag b #:one-way?)) (values a b) (values a (land-on-one-way b a))))
+                    ((flag b #:one-way?) (if a-fixed (values a b) (values (land-on-one-way a b) b)))
+                    ((and a-fixed b-fixed) (values a b))
                     (a-fixed (values a (push-off b a #t)))
                     (b-fixed (values (push-off a b #f) b))
                     (else (push-apart a b))))

@@ -1,11 +1,15 @@
-;;; Platformer: a Tiled level, gravity, jumps and a moving platform.
-;;;   bin/demo-platformer        arrows or A/D walk, z or j jumps, escape quits
+;;; Platformer: a Tiled level, gravity, jumps, a moving platform, a lift,
+;;; jump-through ledges and a camera that glides.
+;;;   bin/demo-platformer        arrows or A/D walk, z or j jumps, down drops
+;;;                              through a ledge, escape quits
+;;; The wooden ledges are one-way tiles: tiles.tsx gives their tile the bool
+;;; property one-way, so the player jumps up through them and lands on top.
 ;;; The level is demo/levels/platformer.tmx (open it in Tiled); the art and
 ;;; sounds come from tools/make-assets.scm (make assets).
 (include "demo/common.scm")
 (import (chicken condition) (downstroke srfi-197)
         (downstroke entity) (downstroke scene) (downstroke tilemap)
-        (downstroke physics) (downstroke input) (downstroke sound))
+        (downstroke physics) (downstroke input) (downstroke sound) (downstroke tween))
 
 (define walk-speed 2)                   ; px per frame
 (define start-x 32)
@@ -25,6 +29,23 @@
         #:solid? #t #:immovable? #t #:min-x 240 #:max-x 320
         #:color '(196 146 84)))
 
+;; A lift over the second pit: a tween moves it up and down for ever (its
+;; velocity steps are skipped), and it carries its rider by what it did.
+(define lift
+  (let ((e (plist->entity
+            (list #:type 'lift #:x 560 #:y 200 #:width 32 #:height 8
+                  #:solid? #t #:immovable? #t #:color '(150 150 170)
+                  #:skip-pipelines '(velocity-x velocity-y)))))
+    (entity-set e #:tween (make-tween e props: '((#:y . 120)) duration: 2000
+                                      ease: 'quad-in-out repeat: -1 yoyo?: #t))))
+
+;; The camera glides after the player and lets it move inside a box
+;; before it follows (docs/scenes.org).
+(define camera (make-camera follow-rate: 1/4 deadzone: '(48 . 64)))
+
+(define (filter-entities keep? es)
+  (foldr (lambda (e out) (if (keep? e) (cons e out) out)) '() es))
+
 (define (play-effect name)
   (when (audio-open?) (play-sound name)))
 
@@ -37,6 +58,8 @@
          (jump? (and ground? (input-pressed? input 'a))))
     (when jump? (play-effect 'jump))
     (chain (if jump? (entity-set p #:ay (- *jump-force*)) p)
+           ;; held down: fall through the one-way ledges
+           (entity-set _ #:drop-through? (input-held? input 'down))
            (entity-set _ #:vx (* dir walk-speed))
            (entity-set _ #:facing (if (zero? dir) (entity-ref p #:facing 1) dir))
            (entity-set _ #:tile-id (cond ((not ground?) in-air)
@@ -67,7 +90,8 @@
                         (load-sounds! '((jump . "demo/assets/jump.wav"))))
                (e (exn) (print "platformer: no sound (" (get-condition-property e 'exn 'message) ")")))
              (let* ((scene (game-load-scene! game "demo/levels/platformer.tmx"
-                                             entities: (list platform player)
+                                             entities: (list platform lift player)
+                                             camera: camera
                                              background: '(92 148 252)))
                     (sprites (cadr (tilemap-tilesets (scene-tilemap scene)))))
                ;; entities draw their #:tile-id from the sprite sheet
@@ -91,7 +115,9 @@
 ;; A headless run reports where the player ended (the tests read this line).
 (when (demo-headless?)
   (let ((p (scene-find-tagged (game-scene game) 'player))
+        (lift (car (filter-entities (lambda (e) (eq? (entity-type e) 'lift))
+                                    (scene-entities (game-scene game)))))
         (camera (scene-camera (game-scene game))))
-    (printf "platformer: player at (~a, ~a) on-ground ~a camera (~a, ~a)~%"
+    (printf "platformer: player at (~a, ~a) on-ground ~a camera (~a, ~a) lift at ~a~%"
             (entity-ref p #:x) (entity-ref p #:y) (entity-ref p #:on-ground? #f)
-            (camera-x camera) (camera-y camera))))
+            (camera-x camera) (camera-y camera) (floor (entity-ref lift #:y)))))

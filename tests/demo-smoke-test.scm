@@ -28,6 +28,10 @@
   (let ((line (last-line (demo-output (string-append "bin/demo-platformer --headless --frames 120 --screenshot " (demo-tmp "ds-platformer.png"))))))
     (test-assert "the player stands on the ground after 120 frames"
                  (substring-index "on-ground #t" line))
+    ;; the lift's tween runs 2 s each way: after 120 frames of 16 ms it is
+    ;; nearly at its top (y 120)
+    (test-assert "the tweened lift has moved up from y 200"
+                 (let ((y (list-ref (ds-numbers line) 4))) (<= 120 y 199)))
     ;; the line's numbers, read back: x y camera-x camera-y
     (let* ((numbers (ds-numbers line))
            (x (list-ref numbers 0)) (y (list-ref numbers 1))

@@ -32,10 +32,15 @@
 (define (pl-map)
   (list->tilemap
    (let rows ((j 0))
-     (if (= j 12) '()
+     (if (= j 12)
+         '()
          (cons (let cols ((i 0))
-                 (if (= i 12) '() (cons (if (or (= j 11) (pl-chance 15)) 1 0) (cols (+ i 1)))))
-               (rows (+ j 1)))))))
+                 (if (= i 12)
+                     '()
+                     (cons (cond ((or (= j 11) (pl-chance 15)) 1) ((pl-chance 10) 2) (else 0))
+                           (cols (+ i 1)))))
+               (rows (+ j 1)))))
+   one-way: '(2)))
 
 ;; A random entity: every key appears only sometimes, in a random order.
 (define (pl-entity k)
@@ -55,6 +60,8 @@
                 (and (pl-chance 15) (cons #:collision-mode (pl-pick 'swept 'discrete)))
                 (and (pl-chance 25) (cons #:solid? (pl-pick #t #f)))
                 (and (pl-chance 8) (cons #:immovable? #t))
+                (and (pl-chance 8) (cons #:one-way? #t))
+                (and (pl-chance 10) (cons #:drop-through? (pl-pick #t #f)))
                 (and (pl-chance 10) (cons #:group-id (pl-pick 'a 'b)))
                 (and (pl-chance 5) (cons #:group-origin? #t))
                 (and (pl-chance 10) (cons #:group-local-x (pl-rand 20)))
@@ -144,9 +151,9 @@
          (density (pl-pick 5 30 60 80))
          (data (make-u32vector (* w h) 0)))
     (do ((i 0 (+ i 1))) ((= i (* w h)))
-      (when (pl-chance density) (u32vector-set! data i 1)))
+      (when (pl-chance density) (u32vector-set! data i (pl-pick 1 1 1 2))))
     (make-tilemap w h (pl-pick 16 8 10 16 1) (pl-pick 16 8 12 16 1)
-                  (list (make-layer "solid" w h data))
+                  (list (make-layer "solid" w h data)) one-way: '(2)
                   origin-col: (- (pl-rand 12) 6) origin-row: (- (pl-rand 12) 6))))
 
 (define (pl-fixnum range)
@@ -174,6 +181,7 @@
          (and (pl-chance 70) (cons #:gravity? (pl-pick #t #t #f)))
          (and (pl-chance 50) (cons #:on-ground? (pl-pick #t #f)))
          (and (pl-chance 15) (cons #:collision-mode (pl-pick 'swept 'discrete)))
+         (and (pl-chance 15) (cons #:drop-through? (pl-pick #t #f)))
          (cons #:id k))))
 
 (define (filter-present ps)

@@ -4,7 +4,11 @@
  <tile id="0" type="ground"/>
  <tile id="1" type="brick"/>
  <tile id="2" type="grass"/>
- <tile id="3" type="platform"/>
+ <tile id="3" type="platform">
+  <properties>
+   <property name="one-way" type="bool" value="true"/>
+  </properties>
+ </tile>
  <tile id="4" type="spikes"/>
  <tile id="5" type="coin"/>
  <tile id="6" type="background"/>
