@@ -105,13 +105,18 @@
   ;; plist) with a view of view-w x view-h screen pixels, inside the map
   ;; `tilemap` (or #f) when its bounds are 'map. An infinite map's edges
   ;; are those of its chunks, negative ones included.
+  ;; A target of #f keeps the camera where it is (a shake still plays out).
   (define (camera-follow c target view-w view-h tilemap)
-    (let* ((target (as-entity target))
+    (let* ((target (and target (as-entity target)))
            (zoom (camera-zoom c))
            (vw (/ view-w zoom)) (vh (/ view-h zoom))
-           (cx (+ (entity-ref target #:x 0) (/ (entity-ref target #:width 0) 2)))
-           (cy (+ (entity-ref target #:y 0) (/ (entity-ref target #:height 0) 2)))
-           (dead (camera-deadzone c))
+           (cx (if target
+                   (+ (entity-ref target #:x 0) (/ (entity-ref target #:width 0) 2))
+                   (+ (camera-exact-x c) (/ vw 2))))
+           (cy (if target
+                   (+ (entity-ref target #:y 0) (/ (entity-ref target #:height 0) 2))
+                   (+ (camera-exact-y c) (/ vh 2))))
+           (dead (and target (camera-deadzone c)))
            (rate (camera-follow-rate c))
            (bounds (camera-bounds c))
            (region (cond ((and (eq? bounds 'map) tilemap)

@@ -190,7 +190,11 @@
   (define (scene-follow-camera s view-w view-h)
     (let* ((tag (scene-camera-target s))
            (target (and tag (scene-find-tagged s tag))))
-      (if target
-          (update-scene s camera: (camera-follow (scene-camera s) target view-w view-h
-                                                 (scene-tilemap s)))
-          s))))
+      (cond (target
+             (update-scene s camera: (camera-follow (scene-camera s) target view-w view-h
+                                                    (scene-tilemap s))))
+            ;; without a target a shake still plays out
+            ((and (scene-camera s) (camera-shaking? (scene-camera s)))
+             (update-scene s camera: (camera-follow (scene-camera s) #f view-w view-h
+                                                    (scene-tilemap s))))
+            (else s)))))

@@ -83,6 +83,11 @@
           (list (map camera-shaking? (cm-take cams 6)) (list-ref offsets 11)))
     (test "the same shake twice is the same (a replay shakes alike)" (map cm-xy cams)
           (map cm-xy (cm-run c (cm-repeat 12 (cm-target 252 212)) 320 240 #f))))
+  (let* ((c (camera-shake (make-camera x: 40 y: 30 bounds: #f) 5 decay: 1/2))
+         (cams (cm-run c (cm-repeat 8 #f) 320 240 #f)))
+    (test "without a target the camera stays and the shake plays out" '((40 30) #f)
+          (list (cm-xy (list-ref cams 7)) (camera-shaking? (list-ref cams 7))))
+    (test-assert "having shaken on the way" (not (equal? (cm-xy (car cams)) '(40 30)))))
   (test "a stronger shake replaces a weaker one, a weaker one does not"
         '(#t #t)
         (let ((c (camera-shake (make-camera) 3)))
