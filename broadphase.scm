@@ -15,7 +15,8 @@
 ;;; Boxes much larger than a cell are kept aside and visited by everyone.
 
 (module (downstroke broadphase)
-  (visit-pairs-in-order visit-near-pairs)
+  (;; for sibling modules only: physics' entity step and the overlap queries
+   visit-pairs-in-order visit-near-pairs)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign))
 

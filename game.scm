@@ -13,7 +13,7 @@
    game-frame game-asset game-asset-set!
    game-recording game-surface game-textures
    game-add-state! game-state-set! game-current-state game-states
-   ;; for the engine and the level loader, not for games
+   ;; for sibling modules only: the engine and the level loader
    game-frame-set! game-surface-set! game-recording-set! game-textures-set!
    active-update-hook active-render-hook)
 

@@ -67,14 +67,16 @@
   (input-actions *default-input-config*
    make-input-config input-config? input-config-keys input-config-buttons
    input-config-axes input-config-dead-zone
-   make-input-state input-state? input-update input-from-held
+   make-input-state input-state? input-update
    input-held? input-pressed? input-released? input-quit?
    input-held-actions input-pressed-actions input-released-actions
    scripted-input script-held-at
    make-recording input-record recording->script
    input-poll-events! input-open-controllers! input-close-controllers!
    push-controller-button-event! push-controller-axis-event!
-   controller-buttons controller-axes)
+   controller-buttons controller-axes
+   ;; for sibling modules only: the engine's replay of recorded input
+   input-from-held)
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken foreign)

@@ -11,7 +11,9 @@
 ;;; memq calls: nothing that a frame would notice.
 
 (module (downstroke keywords)
-  (define/keywords check-keywords)
+  (define/keywords
+   ;; for sibling modules only: what define/keywords expands into
+   check-keywords)
 
   (import scheme (chicken base) (chicken format) (chicken keyword) (chicken string))
   (import-for-syntax (chicken keyword))

@@ -5,7 +5,7 @@
 
 (module (downstroke level)
   (game-load-scene! game-load-tilesets!
-   ;; for the engine: the textures a game owns are freed when it stops
+   ;; for sibling modules only: the engine frees a game's textures when it stops
    free-textures!)
 
   (import (downstroke keywords))

@@ -93,8 +93,8 @@
    property-ref property-type
    ;; tilesets described in code (sprite scenes)
    make-sheet-tileset
-   ;; constructors for the file loaders ((downstroke tmx)); games build maps
-   ;; with make-tilemap, list->tilemap and make-layer
+   ;; for sibling modules only: constructors for the file loader ((downstroke
+   ;; tmx)); games build maps with make-tilemap, list->tilemap and make-layer
    %make-layer make-image make-tile make-tileset make-map-object tileset-tile-table
    tileset-tile-ids gid-mask check-integer)
 

@@ -3,7 +3,9 @@
 ;;; it with the maps, and game-load-scene! uses it.
 
 (module (downstroke objects)
-  (map-object->entity tilemap-objects->entities object-layer-selector)
+  (map-object->entity tilemap-objects->entities
+   ;; for sibling modules only: the level loader's choice of layers
+   object-layer-selector)
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken keyword) (chicken string)

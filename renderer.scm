@@ -110,10 +110,12 @@
 
 (module (downstroke renderer)
   (render-scene! render-map-layers! render-entities! render-entity!
-   screen-coordinate tileset-source-rect layer-camera check-map-orientation
+   screen-coordinate tileset-source-rect layer-camera
    render-debug-overlay! render-draw-line!
    *debug-hitbox-color* *debug-cell-color* *debug-velocity-color*
-   *debug-warning-color* *debug-velocity-scale* *debug-object-color*)
+   *debug-warning-color* *debug-velocity-scale* *debug-object-color*
+   ;; for sibling modules only: the level loader refuses a map it cannot draw
+   check-map-orientation)
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken sort) srfi-4

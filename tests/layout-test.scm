@@ -113,3 +113,37 @@
   (test "docs/modules.org is current (csi -q -s tools/make-modules-doc.scm --write)"
         (md-text "..")
         (with-input-from-file "../docs/modules.org" read-string)))
+
+;; Names exported only for sibling modules (after ";; for sibling modules
+;; only" in an export list, as tools/make-modules-doc.scm reads them) are
+;; not passed on by the modules games import for them.
+(test-group "layout: names for sibling modules stay out of what games import"
+  (let* ((path (string-intersperse
+                (map (lambda (d) (if (absolute-pathname? d) d (normalize-pathname (make-pathname (current-directory) d))))
+                     (repository-path))
+                ":"))
+         ;; each facade, and the modules whose sibling-only names it must not offer
+         (cases '((engine game level input) (tilemap map objects)))
+         (exported?
+          (lambda (facade name)
+            ;; `only` of a name the module does not export is only a
+            ;; warning: the name must also be bound after the import
+            (let ((program (sprintf "(import (only (downstroke ~a) ~a)) (print (if ~a 'yes 'no))" facade name name)))
+              (equal? '("yes")
+                      (with-input-from-pipe
+                       (sprintf "CHICKEN_REPOSITORY_PATH=~a csi -q -e ~a 2>/dev/null" (qs path) (qs program))
+                       read-lines))))))
+    (for-each
+     (lambda (c)
+       (for-each
+        (lambda (m)
+          (let ((names (md-sibling-only (sprintf "../~a.scm" m))))   ; the doc tool's reading
+            (test-assert (sprintf "~a.scm marks some names for its siblings" m) (pair? names))
+            (for-each (lambda (n)
+                        (test (sprintf "(downstroke ~a) does not offer ~a's ~a" (car c) m n) #f
+                              (exported? (car c) n)))
+                      names)))
+        (cdr c)))
+     cases)
+    (test-assert "and the check can see a name that is offered"
+                 (exported? 'tilemap 'make-tilemap))))

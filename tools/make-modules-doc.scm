@@ -5,8 +5,28 @@
 ;;; export list, run from the repository root:
 ;;;   csi -q -s tools/make-modules-doc.scm --write
 
-(import scheme (chicken base) (chicken io) (chicken string) (chicken sort)
+(import scheme (chicken base) (chicken io) (chicken string) (chicken sort) (chicken port)
         (chicken file) (chicken pathname) (chicken process-context) (chicken format))
+
+;; The names a module exports only for its sibling modules: those after the
+;; comment ";; for sibling modules only" in its export list, which the
+;; source puts last.
+(define md-marker ";; for sibling modules only")
+
+(define (md-sibling-only file)
+  (let* ((text (with-input-from-file file read-string))
+         (start (substring-index "(module " text))
+         (imports (and start (substring-index "(import" text start)))
+         (marker (and start (substring-index md-marker text start))))
+    (if (and marker imports (< marker imports))
+        (let* ((after (substring text marker imports))
+               (lines (cdr (string-split after "\n" #t)))
+               (code (string-intersperse
+                      (map (lambda (l) (let ((i (substring-index ";" l))) (if i (substring l 0 i) l)))
+                           lines)
+                      "\n")))
+          (with-input-from-string (string-append "(" code) read))
+        '())))
 
 ;; The (module NAME (EXPORT ...) ...) form of a file, or #f.
 (define (md-module-form file)
@@ -38,7 +58,10 @@
 (define (md-reexports form)
   (let loop ((body (cdddr form)))
     (cond ((null? body) '())
-          ((and (pair? (car body)) (eq? (caar body) 'reexport)) (cdar body))
+          ((and (pair? (car body)) (eq? (caar body) 'reexport))
+           ;; (except M name ...) re-exports M without those names
+           (map (lambda (spec) (if (memq (car spec) '(except only)) (cadr spec) spec))
+                (cdar body)))
           (else (loop (cdr body))))))
 
 (define (md-name m) (sprintf "(~a)" (string-intersperse (map ->string m) " ")))
@@ -66,16 +89,20 @@
             ""
             "Every module of the library, in file order, with what it is for and every"
             "name it exports, in the order of its export list. Games import the"
-            "modules the other documents name; a few names are exported only for a"
-            "sibling module (the source marks them in the export list). This file is"
-            "written by =tools/make-modules-doc.scm= and checked by"
-            "=tests/layout-test.scm=."
+            "modules the other documents name. A few names are exported only because"
+            "a sibling module needs them (CHICKEN has no narrower export): the source"
+            "puts them last in its export list, after the comment"
+            "=;; for sibling modules only=, they are listed apart below, and the"
+            "modules games import for them ((downstroke engine), (downstroke"
+            "tilemap)) do not pass them on. This file is written by"
+            "=tools/make-modules-doc.scm= and checked by =tests/layout-test.scm=."
             "")
       (append-map*
        (lambda (entry)
          (let* ((file (pathname-strip-directory (car entry)))
                 (form (cdr entry))
-                (exports (caddr form))
+                (siblings (md-sibling-only (car entry)))
+                (exports (md-without (caddr form) siblings))
                 (re (md-reexports form)))
            (append
             (list (sprintf "* ~a, =~a=" (md-name (cadr form)) file)
@@ -84,9 +111,18 @@
                 (list (sprintf "Re-exports ~a."
                                (string-intersperse (map md-name re) ", "))))
             (if (null? exports) '() (cons "" (md-names (map ->string exports))))
+            (if (null? siblings) '()
+                (cons "" (cons "For sibling modules only, not for games:"
+                               (md-names (map ->string siblings)))))
             (list ""))))
        modules))
      "\n")))
+
+(define (md-without names drop)
+  (let loop ((ns names) (out '()))
+    (cond ((null? ns) (reverse out))
+          ((memq (car ns) drop) (loop (cdr ns) out))
+          (else (loop (cdr ns) (cons (car ns) out))))))
 
 (define (append-map* f ls) (if (null? ls) '() (append (f (car ls)) (append-map* f (cdr ls)))))
 
