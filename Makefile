@@ -85,6 +85,7 @@ $(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downst
 # C files a module includes (its foreign-declare), found through -I.
 $(BUILD)/downstroke.pipeline.so: needs.c
 $(BUILD)/downstroke.physics.so: motion.c motion.h
+$(BUILD)/downstroke.broadphase.so: broadphase.c
 
 # Tiled's own example maps, from Debian's tiled package (cached in tests/data).
 examples:
