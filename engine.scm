@@ -49,6 +49,8 @@
 
   ;; What a game does once before its first frame.
   (define (game-start! game)
+    ;; a debug game has its scenes' entities checked as they are made
+    (when (game-debug? game) (scene-checks #t))
     (let ((preload (game-preload-hook game))
           (create (game-create-hook game)))
       (when preload (preload game))

@@ -12,8 +12,9 @@
 
 (module (downstroke keywords)
   (define/keywords
-   ;; for sibling modules only: what define/keywords expands into
-   check-keywords)
+   ;; for sibling modules only: what define/keywords expands into, and the
+   ;; distance (downstroke check) measures misspelt entity keys with
+   check-keywords edit-distance)
 
   (import scheme (chicken base) (chicken format) (chicken keyword) (chicken string))
   (import-for-syntax (chicken keyword))
@@ -39,7 +40,7 @@
                  (else (split (cdr fs) (cons (car fs) before)))))))))
 
   ;; Levenshtein distance of two strings.
-  (define (distance a b)
+  (define (edit-distance a b)
     (let* ((n (string-length b))
            (row (let make ((j 0)) (if (> j n) '() (cons j (make (+ j 1)))))))
       (let loop ((i 0) (prev row))
@@ -59,7 +60,7 @@
   ;; The valid keywords nearest to k (within two edits), as "a: or b:".
   (define (suggestion k valid)
     (let* ((s (keyword->string k))
-           (scored (map (lambda (v) (cons (distance s (keyword->string v)) v)) valid))
+           (scored (map (lambda (v) (cons (edit-distance s (keyword->string v)) v)) valid))
            (best (foldl (lambda (m p) (min m (car p))) 3 scored)))
       (and (<= best 2)
            (string-intersperse

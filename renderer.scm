@@ -117,7 +117,7 @@
    ;; for sibling modules only: the level loader refuses a map it cannot draw
    check-map-orientation)
 
-  (import (downstroke keywords))
+  (import (downstroke keywords) (only (downstroke check) report-entity-problems!))
   (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
           (downstroke sdl2) (downstroke entity) (downstroke scene)
           (downstroke map)
@@ -494,6 +494,8 @@
 
   (define/keywords (render-debug-overlay! r scene #!key (view-width #f) (view-height #f)
                                  (velocity-scale *debug-velocity-scale*))
+    ;; what is wrong with the entities, said once each on the error port
+    (report-entity-problems! (scene-entities scene))
     (let* ((camera (scene-camera scene))
            (cx (if camera (camera-x camera) 0))
            (cy (if camera (camera-y camera) 0))

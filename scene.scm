@@ -10,7 +10,7 @@
    scene-solid-entities
    scene-map-entities scene-transform-entities
    scene-add-entity scene-remove-entities scene-find-tagged scene-find-all-tagged
-   scene-follow-camera)
+   scene-follow-camera scene-problems scene-checks)
 
   ;; a scene is made with its camera: the camera's names come with it
   (import (chicken module))
@@ -19,7 +19,8 @@
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken fixnum) (chicken keyword) (chicken string)
           (chicken condition)
-          (downstroke entity) (downstroke map) (downstroke camera))
+          (downstroke entity) (downstroke map) (downstroke camera)
+          (only (downstroke check) entity-list-problems report-entity-problems! scene-checks))
 
   ;; `solids` caches the solid entities of this scene's entity list, which
   ;; ground detection asks for once per gravity entity. It is derived data:
@@ -70,7 +71,13 @@
       (error (sprintf "~a: entities: is one entity, not a list of them (wrap it: (list e))" who)))
     ;; alists come back as they are, so the list is shared, not copied;
     ;; as-entity names an element that is no entity
-    (map/shared as-entity entities))
+    (let ((es (map/shared as-entity entities)))
+      (when (scene-checks) (report-entity-problems! es))
+      es))
+
+  ;; What (downstroke check) finds wrong with the scene's entities: a list
+  ;; of strings, each naming the entity (docs/entities.org).
+  (define (scene-problems s) (entity-list-problems (scene-entities s)))
 
   ;; How tile collisions are resolved unless a scene or an entity says
   ;; otherwise (see physics.scm and docs/physics.org).
