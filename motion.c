@@ -121,12 +121,15 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
                                C_word x_, C_word y_, C_word w_, C_word h_,
                                C_word vx_, C_word vy_, C_word ay_, C_word on)
 {
-  long flags = C_unfix(flags_), g = C_unfix(gravity_);
+  long flags = C_unfix(flags_), g;
   long xn, xd, yn, yd;
+  /* *gravity* may have been tuned to any number: only a small fixnum is ours */
   if ((flags & DS_NOT_HERE) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST) ||
       !(ds_position(x_, &xn, &xd) && ds_position(y_, &yn, &yd) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
-        DS_SIZE(w_) && DS_SIZE(h_) && (!(flags & DS_GRAVITY) || DS_SMALL(ay_))))
+        DS_SIZE(w_) && DS_SIZE(h_) &&
+        (!(flags & DS_GRAVITY) || (DS_SMALL(ay_) && DS_SMALL(gravity_)))))
     return C_fix(-1);
+  g = C_unfix(gravity_);
   long w = C_unfix(w_), h = C_unfix(h_);
   long vx = C_unfix(vx_), vy0 = C_unfix(vy_), ay = C_unfix(ay_);
   long cols = C_unfix(C_block_item(map, 0)), rows = C_unfix(C_block_item(map, 1));

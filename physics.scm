@@ -15,10 +15,11 @@
    aabb-overlap? entity-tile-cells entity-cell-span tile-push-pos
    entity-solid-support-below? resolve-pair push-apart
    discrete-safe-speed tunnel-risk?
-   *gravity* *jump-force* *entity-ground-contact-tolerance* *entity-ground-vy-max*)
+   *gravity* *jump-force* *entity-ground-contact-tolerance* *entity-ground-vy-max*
+   tune-physics!)
 
   (import scheme (chicken base) (chicken fixnum) (chicken format) (chicken foreign) srfi-4
-          (downstroke entity) (downstroke scene) (downstroke map)
+          (downstroke keywords) (downstroke entity) (downstroke scene) (downstroke map)
           (downstroke broadphase))
 
   ;;; Constants
@@ -35,6 +36,24 @@
   ;; A mover falling or rising faster than this (px/frame) is not supported
   ;; by an entity: it would only be passing through the contact band.
   (define *entity-ground-vy-max* 12)
+
+  ;; The supported way to change the constants above (a set! of an
+  ;; imported binding works, with a compiler warning): each keyword given
+  ;; sets one, after all are checked, so a bad one changes nothing.
+  (define/keywords (tune-physics! #!key (gravity *gravity*) (jump-force *jump-force*)
+                                  (ground-contact-tolerance *entity-ground-contact-tolerance*)
+                                  (ground-vy-max *entity-ground-vy-max*))
+    (define (check key v ok? what)
+      (unless (and (real? v) (or (exact? v) (finite? v)) (ok? v))
+        (error (sprintf "tune-physics!: ~a ~s must be ~a" key v what))))
+    (check "gravity:" gravity (lambda (v) #t) "a finite number")
+    (check "jump-force:" jump-force (lambda (v) #t) "a finite number")
+    (check "ground-contact-tolerance:" ground-contact-tolerance (lambda (v) (>= v 0)) "a finite number >= 0")
+    (check "ground-vy-max:" ground-vy-max (lambda (v) (>= v 0)) "a finite number >= 0")
+    (set! *gravity* gravity)
+    (set! *jump-force* jump-force)
+    (set! *entity-ground-contact-tolerance* ground-contact-tolerance)
+    (set! *entity-ground-vy-max* ground-vy-max))
 
   ;;; Reading numbers
 

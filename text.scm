@@ -40,7 +40,7 @@
 ;;; so it suits ASCII sheets; TTF text takes any UTF-8.
 
 (module (downstroke text)
-  (open-font close-font! font? font-alive? font-path font-point-size
+  (open-font close-font! font? font-alive?
    draw-text! text-size
    make-sprite-font sprite-font? sprite-font-texture sprite-font-glyph-width
    sprite-font-glyph-height sprite-font-first-char sprite-font-columns

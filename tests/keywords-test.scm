@@ -7,7 +7,7 @@
         (downstroke test) (downstroke keywords)
         (downstroke decode) (downstroke engine) (downstroke input)
         (downstroke tilemap) (downstroke prefabs) (downstroke renderer) (downstroke scene)
-        (downstroke sdl2) (downstroke sound) (downstroke text) (downstroke tween) (downstroke overlap))
+        (downstroke sdl2) (downstroke sound) (downstroke text) (downstroke tween) (downstroke overlap) (downstroke physics))
 
 (define (kw-message thunk)
   (handle-exceptions e ((condition-property-accessor 'exn 'message "") e) (thunk) "no error"))
@@ -51,7 +51,8 @@
    (list "load-tileset" (lambda () (load-tileset "t.tsx" first-git: 1)) "first-gid:")
    (list "make-tween" (lambda () (make-tween '() duraton: 10)) "duration:")
    (list "camera-shake" (lambda () (camera-shake (make-camera) 2 decy: 1/2)) "decay:")
-   (list "scene-overlapping" (lambda () (scene-overlapping (make-scene) '() wher: #f)) "where:")))
+   (list "scene-overlapping" (lambda () (scene-overlapping (make-scene) '() wher: #f)) "where:")
+   (list "tune-physics!" (lambda () (tune-physics! gravty: 2)) "gravity:")))
 
 (test-group "keywords: an unknown keyword names the procedure and the nearest one"
   (for-each
@@ -62,7 +63,7 @@
                          (substring-index (string-append (car c) ": unknown keyword ") msg)
                          (substring-index (string-append "(did you mean " (caddr c) "?)") msg)))))
    kw-cases)
-  (test "37 procedures checked" 37 (length kw-cases)))
+  (test "38 procedures checked" 38 (length kw-cases)))
 
 (test-group "keywords: the other mistakes with keywords"
   (test "a keyword with no value" "make-game: keyword width: has no value"

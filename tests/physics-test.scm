@@ -1,9 +1,9 @@
 ;;; The physics contract, rule by rule: one group per section of the
 ;;; contract, named after it. Integer inputs, exact expected values.
 
-(import scheme (chicken base) (chicken string) (chicken format)
+(import scheme (chicken base) (chicken string) (chicken format) (chicken condition)
         (downstroke test) (downstroke entity) (downstroke tilemap)
-        (downstroke scene) (downstroke physics) srfi-4)
+        (downstroke scene) (downstroke physics) (downstroke pipeline) srfi-4)
 
 (define (ent . plist) (plist->entity plist))
 (define (at e . keys) (map (lambda (k) (entity-ref e k)) keys))
@@ -309,3 +309,24 @@
                   (list (camera-x c) (camera-y c))))))
     (test "the camera clamps to the map's negative top-left" '(-320 -160) (cam -1000 -1000))
     (test "and to its bottom-right" '(0 80) (cam 1000 1000))))
+
+(test-group "tune-physics!: the supported way to change the constants"
+  (define (fall-after frames)
+    (let loop ((f 0) (s (make-scene entities: (list (ent #:x 0 #:y 0 #:width 8 #:height 8 #:gravity? #t)))))
+      (if (= f frames)
+          (let ((e (car (scene-entities s)))) (list (entity-ref e #:y) (entity-ref e #:vy)))
+          (loop (+ f 1) (engine-pipeline s 16)))))
+  (dynamic-wind
+   void
+   (lambda ()
+     (tune-physics! gravity: 2)
+     (test "gravity 2: after 3 frames y = 2 + 4 + 6 and vy = 6" '(12 6) (fall-after 3))
+     (tune-physics! gravity: 1/2)
+     (test "gravity 1/2 (the readable steps, exactly): y = 1/2 + 1 + 3/2" '(3 3/2) (fall-after 3))
+     (test "a bad value is refused, naming the keyword, and changes nothing"
+           '("tune-physics!: gravity: +nan.0 must be a finite number" 1/2 10)
+           (list (condition-case (tune-physics! jump-force: 20 gravity: +nan.0)
+                   (e (exn) ((condition-property-accessor 'exn 'message) e)))
+                 *gravity* *jump-force*)))
+   (lambda () (tune-physics! gravity: 1 jump-force: 10 ground-contact-tolerance: 5 ground-vy-max: 12)))
+  (test "and back to the defaults" '(3 2) (fall-after 2)))
