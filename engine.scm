@@ -22,7 +22,8 @@
    default-engine-update run-engine-update!
    game-start! game-step!
    game-run! game-recording game-surface game-load-scene! game-load-tilesets! game-textures
-   game-add-state! game-state-set! game-current-state game-states)
+   game-add-state! game-state-set! game-current-state game-states
+   game-frame-profile)
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken process-context) (chicken fixnum)
@@ -59,14 +60,69 @@
   ;; One logical frame without devices: engine update, update:, camera
   ;; follow. dt defaults to the game's frame delay (ms).
   (define (game-step! game #!optional (dt (game-frame-delay game)))
-    (run-engine-update! game dt)
-    (let ((update (active-update-hook game)))
-      (when update (update game dt)))
+    (let* ((t0 (now-ms))
+           (t1 (begin (run-engine-update! game dt) (now-ms))))
+      (let ((update (active-update-hook game)))
+        (when update (update game dt)))
+      (profile-set! game 0 (- t1 t0))
+      (profile-set! game 1 (- (now-ms) t1))
+      (profile-set! game 2 0))                 ; until the frame is drawn
     (let ((scene (game-scene game)))
       (when scene
         (game-scene-set! game (scene-follow-camera scene (game-width game)
                                                    (game-height game)))))
     (game-frame-set! game (+ (game-frame game) 1)))
+
+  ;;; The frame profile: how long the last frames' engine update, update:
+  ;;; and drawing took (ms, from a monotonic clock), for the overlay and
+  ;;; for game-frame-profile.
+
+  (foreign-declare "#include <time.h>")
+  (define now-ms
+    (foreign-lambda* double ()
+      "struct timespec t; clock_gettime(CLOCK_MONOTONIC, &t);
+       C_return(t.tv_sec * 1e3 + t.tv_nsec / 1e6);"))
+
+  (define (profile-slot game part)
+    (let ((v (game-profile game)))
+      (+ (* 3 (modulo (game-frame game) (quotient (vector-length v) 3))) part)))
+
+  (define (profile-set! game part ms)
+    (vector-set! (game-profile game) (profile-slot game part) ms))
+
+  ;; The mean time of each part over the frames remembered (at most the
+  ;; last 60 run): ((engine . ms) (update . ms) (render . ms) (frames . n)).
+  ;; Frames run by game-step! alone have no drawing time (0).
+  (define (game-frame-profile game)
+    (let* ((v (game-profile game))
+           (n (min (game-frame game) (quotient (vector-length v) 3))))
+      (define (mean part)
+        (if (= n 0)
+            0
+            (let loop ((i 0) (sum 0))
+              (if (= i n) (/ sum n) (loop (+ i 1) (+ sum (vector-ref v (+ (* 3 i) part))))))))
+      (list (cons 'engine (mean 0)) (cons 'update (mean 1)) (cons 'render (mean 2))
+            (cons 'frames n))))
+
+  ;; The overlay's readout: a bar per part along the top of the view, its
+  ;; length the part's share of the frame budget (the frame delay) across
+  ;; half the view: green engine update, blue update:, orange drawing; a
+  ;; grey tick marks the whole budget.
+  (define profile-colors '((0 220 0) (60 140 255) (255 160 0)))
+
+  (define (draw-profile! game renderer)
+    (let* ((p (game-frame-profile game))
+           (budget (game-frame-delay game))
+           (full (quotient (game-width game) 2)))
+      (render-draw-color-set! renderer 128 128 128)
+      (render-fill-rect! renderer (make-rect full 0 1 9))
+      (let loop ((parts '(engine update render)) (colors profile-colors) (y 0))
+        (unless (null? parts)
+          (let ((len (min (game-width game)
+                          (inexact->exact (round (* full (/ (cdr (assq (car parts) p)) budget)))))))
+            (apply render-draw-color-set! renderer (car colors))
+            (when (> len 0) (render-fill-rect! renderer (make-rect 0 y len 2)))
+            (loop (cdr parts) (cdr colors) (+ y 3)))))))
 
   ;;; ------------------------------------------------------------------
   ;;; The game shell.
@@ -182,7 +238,8 @@
   ;; shot-box: #f, or a one-element list that receives the frame's pixels
   ;; (read before the present) for a windowed screenshot.
   (define (render-frame! game renderer #!optional (shot-box #f))
-    (let ((scene (game-scene game)))
+    (let ((scene (game-scene game))
+          (t0 (now-ms)))
       (if scene
           (render-scene! renderer scene textures: (game-textures game)
                          debug?: (game-debug? game))
@@ -190,6 +247,11 @@
                  (render-clear! renderer)))
       (let ((hook (active-render-hook game)))
         (when hook (hook game)))
+      ;; the frame just drawn is game-frame - 1
+      (vector-set! (game-profile game)
+                   (+ (* 3 (modulo (- (game-frame game) 1) (quotient (vector-length (game-profile game)) 3))) 2)
+                   (- (now-ms) t0))
+      (when (game-debug? game) (draw-profile! game renderer))
       (when shot-box (set-car! shot-box (capture-pixels renderer)))
       (render-present! renderer)))
 

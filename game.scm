@@ -15,7 +15,7 @@
    game-add-state! game-state-set! game-current-state game-states
    ;; for sibling modules only: the engine and the level loader
    game-frame-set! game-surface-set! game-recording-set! game-textures-set!
-   active-update-hook active-render-hook)
+   active-update-hook active-render-hook game-profile)
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (downstroke assets))
@@ -24,7 +24,7 @@
     (%make-game title width height scale frame-delay input-config
                 preload create update render debug? headless?
                 scene input renderer window frame assets
-                surface states current-state recording textures)
+                surface states current-state recording textures profile)
     game?
     (title game-title)
     (width game-width)
@@ -48,7 +48,9 @@
     (states game-states game-states-set!)
     (current-state game-current-state game-current-state-set!)
     (recording game-recording game-recording-set!)
-    (textures game-textures game-textures-set!))
+    (textures game-textures game-textures-set!)
+    ;; the last frames' times (downstroke engine's game-frame-profile)
+    (profile game-profile))
 
   (define (check what ok? value)
     (unless (ok? value)
@@ -105,7 +107,12 @@
                 (check-hook 'make-game "update:" update 2 "(update game dt)")
                 (check-hook 'make-game "render:" render 1 "(render game)")
                 debug? headless?
-                #f #f #f #f 0 (make-asset-registry) #f '() #f #f '()))
+                #f #f #f #f 0 (make-asset-registry) #f '() #f #f '()
+                (make-vector (* 3 profile-frames) 0)))
+
+  ;; How many frames the profile remembers: three times per frame (engine
+  ;; update, update:, drawing), in ms, frame f at slots 3 (f mod n) ...
+  (define profile-frames 60)
 
   ;; The game's assets live in an asset registry: (game-asset game key
   ;; [default]) is asset-ref on it, so a missing key without a default is an

@@ -3,7 +3,7 @@
 ;;; order, scripted and recorded input, cleanup after errors, quitting,
 ;;; game states.
 
-(import scheme (chicken base) (chicken string) (chicken file) srfi-4 (only (downstroke util) take)
+(import scheme (chicken base) (chicken string) (chicken file) (chicken time) srfi-4 (only (downstroke util) take)
         (downstroke test) (downstroke sdl2) (downstroke entity) (downstroke scene)
         (downstroke input) (downstroke engine)
         (only (downstroke tilemap) make-sheet-tileset))
@@ -351,3 +351,35 @@
     (test-assert "and the run still shut down" (not (sdl-initialized?)))
     (test-error "screenshot: must be a path"
                 (game-run! (run-game) frames: 1 screenshot: 'x))))
+
+;; Busy until the millisecond clock has moved on by `ms`: at least ms - 1
+;; milliseconds of real time.
+(define (run-busy ms)
+  (let ((end (+ (current-milliseconds) ms)))
+    (let loop () (when (< (current-milliseconds) end) (loop)))))
+
+(test-group "game-run!: the frame profile"
+  (let ((g (run-game update: (lambda (g dt) (run-busy 3))
+                     render: (lambda (g) (run-busy 2)))))
+    (game-run! g frames: 12)
+    (let ((p (game-frame-profile g)))
+      (test "it remembers the 12 frames run" 12 (cdr (assq 'frames p)))
+      (test-assert "update: took its 2 ms or more a frame" (>= (cdr (assq 'update p)) 2))
+      (test-assert "drawing (with the render: hook's 1 ms or more) took 1 ms or more" (>= (cdr (assq 'render p)) 1))
+      (test-assert "the engine update, with nothing to do, took less than update:"
+                   (< (cdr (assq 'engine p)) (cdr (assq 'update p))))))
+  (let ((g (run-game)))
+    (game-run! g frames: 100)
+    (test "at most the last 60 frames are kept" 60 (cdr (assq 'frames (game-frame-profile g)))))
+  (test "a game that has run no frame has a profile of zeros"
+        '((engine . 0) (update . 0) (render . 0) (frames . 0))
+        (game-frame-profile (run-game)))
+  ;; the overlay's bars: blue for update:, which takes a whole frame budget
+  ;; here, so its bar spans half the view (16 of 32 px) at y 3
+  (let* ((shot "/tmp/downstroke-profile-shot.png")
+         (g (run-game debug?: #t frame-delay: 10 update: (lambda (g dt) (run-busy 12)))))
+    (game-run! g frames: 3 screenshot: shot)
+    (test "debug?: the update: bar is drawn along the top, as long as its share of the budget"
+          '((60 140 255 255) (60 140 255 255))
+          (list (png-pixel shot 0 3) (png-pixel shot 15 3)))
+    (delete-file* shot)))
