@@ -23,13 +23,14 @@
    game-start! game-step!
    game-run! game-recording game-surface game-load-scene! game-load-tilesets! game-textures
    game-add-state! game-state-set! game-current-state game-states
-   game-frame-profile)
+   game-frame-profile game-paused? game-resume! game-quit!)
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken process-context) (chicken fixnum)
-          (chicken foreign) (chicken condition) (chicken file) (chicken pathname)
+          (chicken foreign) (chicken condition) (chicken file) (chicken pathname) (chicken port)
           (downstroke game) (downstroke level) (downstroke pipeline)
-          (downstroke scene) (downstroke sdl2) (downstroke renderer) (downstroke input))
+          (downstroke scene) (downstroke sdl2) (downstroke renderer) (downstroke input)
+          (downstroke repl))
 
   (define (default-engine-update game dt)
     (let ((scene (game-scene game)))
@@ -214,8 +215,37 @@
              (lambda () (img-save-png! s path))
              (lambda () (free-surface! s)))))))
 
+  ;;; Pausing and quitting from outside the hooks (the REPL, mostly).
+  ;;; With a REPL on, an error in a hook pauses the game instead of ending
+  ;;; game-run!: frames stop (the window and the REPL stay live) until
+  ;;; (game-resume! game). (game-quit! game) ends the run after the frame
+  ;;; it is called in.
+  (define paused-games '())
+  (define quitting-games '())
+  (define (game-paused? game) (and (memq game paused-games) #t))
+  (define (game-resume! game)
+    (set! paused-games (remove-game game paused-games)))
+  (define (game-quit! game)
+    (unless (memq game quitting-games) (set! quitting-games (cons game quitting-games))))
+  (define (remove-game game games)
+    (cond ((null? games) '())
+          ((eq? (car games) game) (cdr games))
+          (else (cons (car games) (remove-game game (cdr games))))))
+
+  ;; Runs thunk; with a REPL, an error pauses the game and is told there
+  ;; (and is not raised); without one it is raised as usual.
+  (define (guarded repl what thunk)
+    (if repl
+        (condition-case (thunk)
+          (e ()
+             (set! paused-games (cons (car repl) paused-games))
+             (repl-say! (cdr repl)
+                        (sprintf "downstroke: ~a raised an error; the game is paused until (game-resume! game):\n~a"
+                                 what (call-with-output-string (lambda (p) (print-error-message e p)))))))
+        (thunk)))
+
   ;; One logical frame. Returns #t when the game should quit instead.
-  (define (run-frame! game config script events rec-box)
+  (define (run-frame! game config script events rec-box #!optional repl)
     (let* ((prev (game-input game))
            (from-events (input-update (if script (make-input-state) prev) config events))
            (state (if script (script (game-frame game) prev) from-events)))
@@ -229,11 +259,15 @@
               (set-car! rec-box (input-record (car rec-box) (game-frame game)
                                               (input-from-held prev (cons 'quit (input-held-actions state))))))
             #t)
-          (begin
-            (when rec-box
-              (set-car! rec-box (input-record (car rec-box) (game-frame game) state)))
-            (game-step! game)
-            #f))))
+          (cond ((memq game quitting-games)
+                 (set! quitting-games (remove-game game quitting-games))
+                 #t)
+                ((game-paused? game) #f)
+                (else
+                 (when rec-box
+                   (set-car! rec-box (input-record (car rec-box) (game-frame game) state)))
+                 (guarded repl "a hook or the engine update" (lambda () (game-step! game)))
+                 #f)))))
 
   ;; shot-box: #f, or a one-element list that receives the frame's pixels
   ;; (read before the present) for a windowed screenshot.
@@ -256,14 +290,18 @@
       (render-present! renderer)))
 
   ;; Returns the number of frames run.
-  (define (run-loop! game renderer config script frames fast? rec-box shot-box)
+  ;; repl: #f, or (game . repl), served once per pass of the loop.
+  (define (run-loop! game renderer config script frames fast? rec-box shot-box repl)
     (let ((fd (game-frame-delay game)))
+      (define (draw! shot)
+        (guarded repl "the render: hook or drawing" (lambda () (render-frame! game renderer shot))))
       (let loop ((done 0) (acc 0) (last (get-ticks)))
+        (when repl (repl-poll! (cdr repl)))
         (cond ((and frames (>= done frames)) done)
               (fast?
-               (if (run-frame! game config script (input-poll-events!) rec-box)
+               (if (run-frame! game config script (input-poll-events!) rec-box repl)
                    done
-                   (begin (render-frame! game renderer)
+                   (begin (draw! #f)
                           (loop (+ done 1) 0 last))))
               (else
                (let* ((now (get-ticks))
@@ -276,18 +314,30 @@
                             (loop done acc now))
                      (let batch ((i 0) (events (input-poll-events!)))
                        (cond ((= i n)
-                              (render-frame! game renderer
-                                             (and shot-box
-                                                  (or (not frames) (>= (+ done n) frames))
-                                                  shot-box))
+                              (draw! (and shot-box
+                                          (or (not frames) (>= (+ done n) frames))
+                                          shot-box))
                               (loop (+ done n) acc now))
-                             ((run-frame! game config script events rec-box) (+ done i))
+                             ((run-frame! game config script events rec-box repl) (+ done i))
                              (else (batch (+ i 1) '())))))))))))
 
   (define unset (list 'unset))
 
+  ;; repl: #f; 'stdin; a TCP port number (0: any free one); or a list of
+  ;; such. The port is printed when the REPL opens.
+  (define (repl-options who repl)
+    (let ((parts (if (list? repl) repl (list repl))))
+      (for-each (lambda (p)
+                  (unless (or (eq? p 'stdin) (and (exact-integer? p) (<= 0 p 65535)))
+                    (error (sprintf "~a: repl: ~s must be #f, 'stdin, a TCP port number or a list of those"
+                                    who repl))))
+                parts)
+      (values (memq 'stdin parts)
+              (let find ((ps parts)) (cond ((null? ps) #f) ((exact-integer? (car ps)) (car ps))
+                                           (else (find (cdr ps))))))))
+
   (define/keywords (game-run! game #!key (frames #f) (input-script #f) (record #f)
-                     (headless? unset) (screenshot #f))
+                     (headless? unset) (screenshot #f) (repl #f))
     (unless (or (not frames) (and (exact-integer? frames) (>= frames 0)))
       (error 'game-run! "frames: must be a non-negative integer or #f" frames))
     (unless (or (not screenshot) (and (string? screenshot) (> (string-length screenshot) 0)))
@@ -301,7 +351,9 @@
            (h (* (game-height game) (game-scale game)))
            (rec-box (and record (list (make-recording))))
            (window #f) (surface #f) (renderer #f)
+           (served #f)                  ; (game . repl) while a REPL runs
            (ran 0))
+      (when repl (repl-options 'game-run! repl))
       (dynamic-wind
        void
        (lambda ()
@@ -317,12 +369,19 @@
          (game-surface-set! game surface)
          (game-renderer-set! game renderer)
          (game-input-set! game (make-input-state))
+         (when repl
+           (let-values (((stdin? port) (repl-options 'game-run! repl)))
+             (set! served (cons game (make-repl port: port stdin?: stdin?)))
+             (when port
+               (print "downstroke: repl on 127.0.0.1 port " (repl-port (cdr served)))
+               (flush-output))))
          (game-start! game)
          (set! ran (run-loop! game renderer config script frames
-                              (and frames headless) rec-box shot-box))
+                              (and frames headless) rec-box shot-box served))
          (when screenshot
            (save-screenshot! screenshot renderer surface (and shot-box (car shot-box)))))
        (lambda ()
+         (when served (repl-close! (cdr served)) (game-resume! game) (set! served #f))
          (when rec-box (game-recording-set! game (recording->script (car rec-box))))
          (free-textures! game)
          (input-close-controllers!)
