@@ -18,7 +18,7 @@
    active-update-hook active-render-hook game-profile)
 
   (import (downstroke keywords))
-  (import scheme (chicken base) (chicken format) (downstroke assets))
+  (import scheme (chicken base) (chicken format) (chicken condition) (downstroke assets))
 
   (define-record-type game
     (%make-game title width height scale frame-delay input-config
@@ -87,7 +87,24 @@
                                     ((= 1 (car arity)) "1 argument")
                                     (else (sprintf "~a arguments" (car arity))))
                               call)))))
-    proc)
+    (if (and proc (not (procedure-arity proc)))
+        (arity-reporting what proc call)
+        proc))
+
+  ;; A hook whose arity CHICKEN cannot tell (compiled with -d0) is checked
+  ;; when it is called instead: a call with the wrong number of arguments
+  ;; is reported naming the hook. An arity error raised inside the hook,
+  ;; by a call of some other procedure, passes through as it was.
+  (define (arity-reporting what proc call)
+    (lambda args
+      (condition-case (apply proc args)
+        (e (exn arity)
+           (if (memq proc ((condition-property-accessor 'exn 'arguments '()) e))
+               (error (sprintf "~a hook ~s cannot take ~a; it is called as ~a"
+                               what proc
+                               (if (= 1 (length args)) "1 argument" (sprintf "~a arguments" (length args)))
+                               call))
+               (signal e))))))
 
   ;; width x height is the logical resolution the game draws at; the window
   ;; is `scale` times larger on each axis. input-config #f stands for the

@@ -1,7 +1,7 @@
 ;;; (downstroke engine): the game record, the frame dispatch, the default
 ;;; pipeline, and scenarios over many frames. No SDL is involved.
 
-(import scheme (chicken base) (chicken string)
+(import scheme (chicken base) (chicken string) (chicken format) (chicken process) (chicken file)
         (downstroke test) (downstroke entity) (downstroke tilemap)
         (downstroke scene) (downstroke physics) (downstroke tween) (downstroke animation)
         (downstroke engine) (downstroke pipeline) (downstroke srfi-197))
@@ -88,6 +88,28 @@
   (test-assert "a value that is no procedure"
                (says "make-game: create: must be a procedure or #f, got 5"
                      (lambda () (make-game create: 5)))))
+
+;; Hooks compiled with -d0 carry no argument list, so make-game cannot tell
+;; their arity: a wrong one is reported naming the hook when it is called.
+(test-group "hooks whose arity CHICKEN cannot tell are checked when called"
+  (let* ((src (sprintf "/tmp/downstroke-d0-~a.scm" (current-process-id)))
+         (so (sprintf "/tmp/downstroke-d0-~a.so" (current-process-id))))
+    (with-output-to-file src
+      (lambda ()
+        (write '(define (d0-update game) game))                          ; one argument: wrong
+        (write '(define (d0-good game dt) (d0-helper 1 2)))              ; calls a helper wrongly
+        (write '(define (d0-helper x) x))))
+    (system (sprintf "csc -s -d0 ~a -o ~a" src so))
+    (load so)
+    (define (text thunk) (handle-exceptions e (error-text e) (thunk) "no error"))
+    (test "make-game cannot tell its arity and accepts it" #t (game? (make-game update: d0-update)))
+    (test-assert "calling it with (game dt) names the hook and how it is called"
+                 (substring-index "update: hook #<procedure> cannot take 2 arguments; it is called as (update game dt)"
+                                  (text (lambda () (game-step! (make-game update: d0-update))))))
+    (test-assert "a wrong call inside a hook is reported as CHICKEN reports it, not blamed on the hook"
+                 (let ((t (text (lambda () (game-step! (make-game update: d0-good))))))
+                   (and (substring-index "bad argument count" t) (not (substring-index "update: hook" t)))))
+    (delete-file* src) (delete-file* so)))
 
 (test-group "2.3 engine-update dispatch"
   (let ((g (game-with (make-scene entities: (list (ent #:gravity? #t #:x 0 #:y 0 #:vy 0))))))
