@@ -15,8 +15,9 @@
 ;;; Boxes much larger than a cell are kept aside and visited by everyone.
 
 (module (downstroke broadphase)
-  (;; for sibling modules only: physics' entity step and the overlap queries
-   visit-pairs-in-order visit-near-pairs)
+  (;; for sibling modules only: physics' entity step and ground detection,
+   ;; and the overlap queries
+   visit-pairs-in-order visit-near-pairs make-box-index box-index-near)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign))
 
@@ -211,32 +212,51 @@
                                 (if (fx<= r q) out (tail (fx- r 1) (cons r out)))))
                              (else (gather p q (cdr queue))))))))))))
 
-  ;; Boxes that do not move: m query boxes, (query j) giving (values x y w
-  ;; h), against n filed boxes, (box k). Calls (found j k) for every filed
-  ;; box sharing a cell with query j (a superset of those it overlaps), j
-  ;; ascending and, for each j, k ascending, each pair once. The cost grows
-  ;; with the boxes filed and asked and with the pairs that are close.
+  ;; Boxes that do not move, filed once and asked about many times: n boxes
+  ;; numbered 0..n-1, (box k) giving (values x y w h).
+  (define-record-type box-index
+    (%make-box-index n size buckets mask stamp buf large queries)
+    box-index?
+    (n index-n) (size index-size) (buckets index-buckets) (mask index-mask)
+    (stamp index-stamp) (buf index-buf) (large index-large)
+    (queries index-queries index-queries-set!))
+
+  (define (make-box-index n box)
+    (let* ((size (cell-size n box))
+           (buckets (make-vector (bucket-count n) '()))
+           (mask (- (vector-length buckets) 1))
+           (large (let file ((k (fx- n 1)) (large '()))
+                    (if (fx< k 0)
+                        large
+                        (let ((span (let-values (((x y w h) (box k))) (span-of-box x y w h size))))
+                          (if (eq? span 'large)
+                              (file (fx- k 1) (cons k large))
+                              (begin (file-box! buckets mask k span)
+                                     (file (fx- k 1) large))))))))
+      (%make-box-index n size buckets mask (make-vector (max n 1) -1) (make-vector (max n 1) 0) large 0)))
+
+  ;; The boxes sharing a hash cell with the box x y w h (a superset of
+  ;; those it overlaps), ascending, each once.
+  (define (box-index-near index x y w h)
+    (let ((q (index-queries index))
+          (span (span-of-box x y w h (index-size index))))
+      (index-queries-set! index (fx+ q 1))
+      (if (eq? span 'large)
+          (let all ((k (fx- (index-n index) 1)) (out '()))
+            (if (fx< k 0) out (all (fx- k 1) (cons k out))))
+          (gather-near q -1 span '() (index-buckets index) (index-large index)
+                       (index-stamp index) (index-mask index) (index-buf index)))))
+
+  ;; m query boxes, (query j) giving (values x y w h), against n filed
+  ;; boxes: calls (found j k) for every filed box near query j, j ascending
+  ;; and, for each j, k ascending, each pair once. The cost grows with the
+  ;; boxes filed and asked and with the pairs that are close.
   (define (visit-near-pairs m query n box found)
     (when (fx> n 0)
-      (let* ((size (cell-size n box))
-             (buckets (make-vector (bucket-count n) '()))
-             (mask (- (vector-length buckets) 1))
-             (stamp (make-vector n -1))
-             (buf (make-vector n 0))
-             (large (let file ((k (fx- n 1)) (large '()))
-                      (if (fx< k 0)
-                          large
-                          (let ((span (let-values (((x y w h) (box k))) (span-of-box x y w h size))))
-                            (if (eq? span 'large)
-                                (file (fx- k 1) (cons k large))
-                                (begin (file-box! buckets mask k span)
-                                       (file (fx- k 1) large))))))))
+      (let ((index (make-box-index n box)))
         (do ((j 0 (fx+ j 1))) ((fx= j m))
-          (let ((span (let-values (((x y w h) (query j))) (span-of-box x y w h size))))
-            (if (eq? span 'large)
-                (do ((k 0 (fx+ k 1))) ((fx= k n)) (found j k))
-                (for-each (lambda (k) (found j k))
-                          (gather-near j -1 span '() buckets large stamp mask buf))))))))
+          (let-values (((x y w h) (query j)))
+            (for-each (lambda (k) (found j k)) (box-index-near index x y w h)))))))
 
   ;; Cells about twice the mean box size keep a few boxes per cell.
   (define (cell-size n box)

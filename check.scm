@@ -10,7 +10,7 @@
 ;;;     #:collision-mode, #:tags that are not a list).
 ;;; Nothing here runs in the per-frame pipeline: (downstroke scene)'s
 ;;; scene-problems is called by hand, by make-scene and update-scene when
-;;; (scene-checks) is true (a game run with debug?: #t turns it on), and
+;;; (scene-checks) is true (game-run! turns it on for a debug? game), and
 ;;; the debug overlay reports what it finds.
 
 (module (downstroke check)

@@ -51,8 +51,6 @@
 
   ;; What a game does once before its first frame.
   (define (game-start! game)
-    ;; a debug game has its scenes' entities checked as they are made
-    (when (game-debug? game) (scene-checks #t))
     (let ((preload (game-preload-hook game))
           (create (game-create-hook game)))
       (when preload (preload game))
@@ -354,6 +352,8 @@
            (served #f)                  ; (game . repl) while a REPL runs
            (ran 0))
       (when repl (repl-options 'game-run! repl))
+      ;; a debug game has its scenes' entities checked as they are made
+      (parameterize ((scene-checks (or (scene-checks) (game-debug? game))))
       (dynamic-wind
        void
        (lambda ()
@@ -393,5 +393,5 @@
            (when r (destroy-renderer! r))
            (when wi (destroy-window! wi))
            (when s (free-surface! s)))
-         (when (and owns-sdl (sdl-initialized?)) (quit!))))
+         (when (and owns-sdl (sdl-initialized?)) (quit!)))))
       (if record (game-recording game) ran))))

@@ -619,20 +619,56 @@
   (define (entity-ground? entity solids x w bottom vy)
     (and (pair? solids)
          (<= (abs vy) *entity-ground-vy-max*)
-         (let loop ((solids solids))
-           (and (pair? solids)
-                (let ((s (car solids)))
-                  (or (and (not (eq? s entity))
-                           (entity-ref s #:solid? #f)
-                           (< x (+ (num s #:x) (num s #:width)))
-                           (< (num s #:x) (+ x w))
-                           (<= (abs (- (num s #:y) bottom))
-                               *entity-ground-contact-tolerance*)
-                           ;; a one-way platform holds no one rising through
-                           ;; it or dropping through it
-                           (or (not (entity-ref s #:one-way? #f))
-                               (and (>= vy 0) (not (entity-ref entity #:drop-through? #f)))))
-                      (loop (cdr solids))))))))
+         (if (at-least? solids index-from)
+             ;; many solids: only those whose top is near the feet
+             (let* ((si (support-index solids))
+                    (v (car si))
+                    (tol *entity-ground-contact-tolerance*))
+               (let loop ((ks (box-index-near (cdr si) x (- bottom tol) w (* 2 tol))))
+                 (and (pair? ks)
+                      (or (supports? (vector-ref v (car ks)) entity x w bottom vy)
+                          (loop (cdr ks))))))
+             (let loop ((solids solids))
+               (and (pair? solids)
+                    (or (supports? (car solids) entity x w bottom vy)
+                        (loop (cdr solids))))))))
+
+  (define (supports? s entity x w bottom vy)
+    (and (not (eq? s entity))
+         (entity-ref s #:solid? #f)
+         (< x (+ (num s #:x) (num s #:width)))
+         (< (num s #:x) (+ x w))
+         (<= (abs (- (num s #:y) bottom))
+             *entity-ground-contact-tolerance*)
+         ;; a one-way platform holds no one rising through it or
+         ;; dropping through it
+         (or (not (entity-ref s #:one-way? #f))
+             (and (>= vy 0) (not (entity-ref entity #:drop-through? #f))))))
+
+  ;; From this many solid entities on, ground detection asks a spatial
+  ;; hash of their tops (broadphase.scm) instead of walking them all for
+  ;; every body: the same answer, without the cost growing with the square
+  ;; of the crowd. The hash of a frame's solid list is kept while the
+  ;; scene's cached list is the same object.
+  (define index-from 48)
+
+  (define (at-least? ls n)
+    (let loop ((ls ls) (n n)) (or (fx= n 0) (and (pair? ls) (loop (cdr ls) (fx- n 1))))))
+
+  (define last-support (cons #f #f))     ; (solids . (vector . index))
+
+  (define (support-index solids)
+    (if (eq? (car last-support) solids)
+        (cdr last-support)
+        (let* ((v (list->vector solids))
+               ;; each solid as its top edge
+               (index (make-box-index (vector-length v)
+                                      (lambda (k)
+                                        (let ((s (vector-ref v k)))
+                                          (values (num s #:x) (num s #:y) (num s #:width) 0)))))
+               (entry (cons v index)))
+          (set! last-support (cons solids entry))
+          entry)))
 
   ;; The contract's ground detection, reading the entity in one walk.
   (define (detect-on-solid scene entity dt)

@@ -1,9 +1,9 @@
 ;;; The benchmark scenes of bench-spec.md (S1, S2, S3) and of
-;;; docs/performance.org (S4), run by `make bench`.
+;;; docs/performance.org (S4, S5), run by `make bench`.
 ;;; Prints a table, the checksum lines the spec asks for, and writes one CSV
 ;;; row per (scene, mode, n or speed):
 ;;;   scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct
-;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 S4 steps ...]
+;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 S4 S5 steps ...]
 
 (import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
         (chicken string) (chicken sort) (chicken gc) (chicken io) (chicken condition)
@@ -344,6 +344,29 @@
       (report! "S4" method (+ bullets enemies) #f frames ms (/ (* 1000 ms) (+ bullets enemies)) #f #f)
       ms)))
 
+;;; S5: S1's map and movers, every mover #:solid? #t (docs/performance.org):
+;;; entity push-apart and ground detection on solid entities in a crowd.
+;;; 10 frames of warm-up, 60 timed: the largest crowd is slow.
+(define (run-s5 n runs)
+  (let ((times
+         (let repeat ((r 0) (times '()))
+           (if (= r runs)
+               times
+               (let-values (((scene speeds) (s1-scene n 'swept)))
+                 (let* ((scene (scene-map-entities scene (lambda (s e) (entity-set e #:solid? #t)))))
+                   (let frames ((f 0) (scene scene) (start #f))
+                     (cond ((= f 70)
+                            (when (= r 0)
+                              (let ((es (scene-entities scene)))
+                                (printf "checksum S5 n=~a sum-x=~a sum-y=~a on-ground=~a~%"
+                                        n (sum #:x es) (sum #:y es) (length (filter-on-ground es)))))
+                            (repeat (+ r 1) (cons (- (now) start) times)))
+                           (else
+                            (let ((start (if (= f 10) (now) start)))
+                              (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f) start)))))))))))
+    (let ((ms (/ (median times) 60.0)))
+      (report! "S5" 'swept n #f 60 ms (/ (* 1000 ms) n) #f #f))))
+
 ;;; Command line.
 (define args (command-line-arguments))
 (define (flag-value name default)
@@ -369,7 +392,7 @@
 (define (filter-scenes args)
   (let loop ((as args) (out '()))
     (cond ((null? as) out)
-          ((member (car as) '("S1" "S2" "S3" "S4" "steps")) (loop (cdr as) (cons (car as) out)))
+          ((member (car as) '("S1" "S2" "S3" "S4" "S5" "steps")) (loop (cdr as) (cons (car as) out)))
           (else (loop (cdr as) out)))))
 
 (when (wanted? "S1")
@@ -401,3 +424,5 @@
          (fast (run-s4 'overlapping-pairs bullets enemies runs))
          (slow (run-s4 'all-pairs bullets enemies runs)))
     (printf "S4 all-pairs / overlapping-pairs: ~a~%" (fixed (/ slow fast) 2))))
+(when (wanted? "S5")
+  (for-each (lambda (n) (run-s5 n runs)) (sizes (if quick? '(1000) '(1000 4000 16000)))))

@@ -6,6 +6,7 @@
         (downstroke scene) (downstroke physics) (downstroke pipeline) srfi-4)
 
 (define (ent . plist) (plist->entity plist))
+(define (pick-size r) (case r ((0) 0) ((1) 200) (else (+ 2 r))))
 (define (at e . keys) (map (lambda (k) (entity-ref e k)) keys))
 
 ;; A 16 px map from rows of 0/1.
@@ -330,3 +331,43 @@
                  *gravity* *jump-force*)))
    (lambda () (tune-physics! gravity: 1 jump-force: 10 ground-contact-tolerance: 5 ground-vy-max: 12)))
   (test "and back to the defaults" '(3 2) (fall-after 2)))
+
+;; Many solid entities: ground detection asks a spatial hash of their tops.
+;; The answer must be the contract's, body for body.
+(test-group "entity ground with many solids: the same answer as walking them all"
+  (define seed 5)
+  (define (rnd n) (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648)) (modulo seed n))
+  (define (brute e solids)
+    (let ((x (entity-ref e #:x 0)) (w (entity-ref e #:width 0))
+          (bottom (+ (entity-ref e #:y 0) (entity-ref e #:height 0))) (vy (entity-ref e #:vy 0)))
+      (and (<= (abs vy) 12)
+           (let loop ((ss solids))
+             (and (pair? ss)
+                  (let ((s (car ss)))
+                    (or (and (not (eq? s e)) (entity-ref s #:solid? #f)
+                             (< x (+ (entity-ref s #:x) (entity-ref s #:width)))
+                             (< (entity-ref s #:x) (+ x w))
+                             (<= (abs (- (entity-ref s #:y) bottom)) 5)
+                             (or (not (entity-ref s #:one-way? #f))
+                                 (and (>= vy 0) (not (entity-ref e #:drop-through? #f)))))
+                        (loop (cdr ss)))))))))
+  (let loop ((round 0) (different 0) (grounded 0))
+    (if (= round 20)
+        (begin (test "20 crowds of 400 bodies, every body: identical" 0 different)
+               (test-assert "and many of them stand on another" (> grounded 500)))
+        (let* ((crowd (let make ((k 0) (out '()))
+                        (if (= k 400) out
+                            (make (+ k 1)
+                                  (cons (ent #:id k #:x (- (rnd 400) 20) #:y (+ (rnd 200) (/ (rnd 4) 4))
+                                             #:width (pick-size (rnd 10)) #:height (+ 4 (rnd 12))
+                                             #:vy (- (rnd 30) 15) #:solid? (< (rnd 10) 8)
+                                             #:one-way? (= (rnd 10) 0) #:drop-through? (= (rnd 12) 0))
+                                        out)))))
+               (solids (let keep ((es crowd)) (cond ((null? es) '()) ((entity-ref (car es) #:solid? #f) (cons (car es) (keep (cdr es)))) (else (keep (cdr es)))))))
+          (let count ((es crowd) (different different) (grounded grounded))
+            (if (null? es)
+                (loop (+ round 1) different grounded)
+                (let ((fast (and (entity-solid-support-below? (car es) solids) #t))
+                      (slow (and (brute (car es) solids) #t)))
+                  (count (cdr es) (if (eq? fast slow) different (+ different 1))
+                         (if slow (+ grounded 1) grounded)))))))))
