@@ -44,7 +44,8 @@
    draw-text! text-size
    make-sprite-font sprite-font? sprite-font-texture sprite-font-glyph-width
    sprite-font-glyph-height sprite-font-first-char sprite-font-columns
-   draw-sprite-text! sprite-text-size)
+   draw-sprite-text! sprite-text-size
+   max-font-size max-text-length)
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken foreign) (chicken gc) (chicken format)
@@ -114,10 +115,19 @@ EOF
 
   (define (font-alive? f) (and (font-ptr f) #t))
 
+  ;; Limits that keep a mistaken or hostile value from exhausting memory
+  ;; (a glyph cache of 2^32-point glyphs, a texture for a megabyte of
+  ;; text); parameters, so a game that needs more says so.
+  (define max-font-size (make-parameter 1000))       ; points
+  (define max-text-length (make-parameter 10000))    ; characters drawn at once
+
   (define (open-font path size)
     (unless (string? path) (error 'open-font "the font path must be a string" path))
     (unless (and (exact-integer? size) (> size 0))
       (error 'open-font "the point size must be a positive integer" size))
+    (when (> size (max-font-size))
+      (error (sprintf "open-font: ~s at ~a points is above max-font-size (~a); (max-font-size N) allows more"
+                      path (if (> size 1000000000) "more than 10^9" size) (max-font-size))))
     (unless (file-exists? path)
       (text-error 'open-font (sprintf "TTF_OpenFont: cannot open ~s: no such file" path)))
     (ttf-init! 'open-font)
@@ -140,6 +150,9 @@ EOF
 
   (define (text-string who s)
     (unless (string? s) (error who "the text must be a string" s))
+    (when (> (string-length s) (max-text-length))
+      (error (sprintf "~a: a text of ~a characters is above max-text-length (~a); (max-text-length N) allows more"
+                      who (string-length s) (max-text-length))))
     s)
 
   (define (text-size font string)

@@ -177,5 +177,28 @@
     (test-error "glyph-width is required" (make-sprite-font tex glyph-height: 4))
     (destroy-texture! tex)))
 
+(test-group "text: limits"
+  (define (message thunk)
+    (handle-exceptions e (error-text e) (thunk) "no error"))
+  (test-assert "a font size of 2^32 is an error naming the file and max-font-size"
+               (let ((m (message (lambda () (open-font tx-font-path 4294967296)))))
+                 (and (substring-index "DejaVuSans.ttf" m) (substring-index "above max-font-size (1000)" m))))
+  (test-assert "(max-font-size N) allows more"
+               (parameterize ((max-font-size 2000))
+                 (let ((f (open-font tx-font-path 1500))) (close-font! f) #t)))
+  (let ((font (open-font tx-font-path 10))
+        (long (make-string 20000 #\a)))
+    (test-assert "a text of 20,000 characters is an error naming max-text-length"
+                 (substring-index "draw-text!: a text of 20000 characters is above max-text-length (10000)"
+                                  (message (lambda () (draw-text! tx-renderer font long 0 0)))))
+    (test-assert "text-size says the same"
+                 (substring-index "text-size: a text of 20000 characters"
+                                  (message (lambda () (text-size font long)))))
+    (test-assert "(max-text-length N) allows more"
+                 (parameterize ((max-text-length 30000))
+                   (receive (w h) (text-size font long) (> w 20000))))
+    (close-font! font)))
+
 (free-surface! tx-surface)
 (delete-directory tx-dir #t)
+
