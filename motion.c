@@ -80,6 +80,21 @@ static int ds_cell(const unsigned char *bytes, long cols, long rows, long col0, 
   return c >= 0 && c < cols && r >= 0 && r < rows ? bytes[r * cols + c] : 0;
 }
 
+/* Whether the box [xn/xd, +w) x [yn/yd, +h) covers a solid cell (byte 1).
+   Swept mode takes a moving body that starts a frame so out of the tiles
+   first (physics.scm's leave-solids); the kernel leaves such a body to it. */
+static int ds_box_solid(const unsigned char *bytes, long cols, long rows, long col0, long row0,
+                        long tw, long th, long xn, long xd, long w, long yn, long yd, long h)
+{
+  long c0 = ds_max(ds_first(xn, xd, tw) - col0, 0), c1 = ds_min(ds_last(xn, xd, w, tw) - col0, cols - 1);
+  long r0 = ds_max(ds_first(yn, yd, th) - row0, 0), r1 = ds_min(ds_last(yn, yd, h, th) - row0, rows - 1);
+  long r, c;
+  for (r = r0; r <= r1; r++)
+    for (c = c0; c <= c1; c++)
+      if (bytes[r * cols + c] == 1) return 1;
+  return 0;
+}
+
 /* map is #(cols rows col0 row0 tile-width tile-height). */
 /* Fixnums below this stay fixnums, and fit a long, through the sums below:
    2^40 on 64-bit CHICKEN (62-bit fixnums), 2^27 on 32-bit (30-bit). */
@@ -140,6 +155,9 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
     return C_fix(-1);                  /* d * tile could overflow */
   int accelerate = grav && !(ay == 0 && (flags & DS_HAS_AY));
   long vy = grav ? (accelerate ? vy0 + ay : vy0) + g : vy0;
+  if (has_map && swept && (vx != 0 || vy != 0) &&
+      ds_box_solid(bytes, cols, rows, col0, row0, tw, th, xn, xd, w, yn, yd, h))
+    return C_fix(-1);
   long x2n = xn + vx * xd, x2d = xd, y2n, y2d = yd, stop;
   int x_stopped = 0, y_stopped = 0, writes = 0;
   if (has_map && vx != 0 &&

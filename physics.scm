@@ -18,7 +18,7 @@
    *gravity* *jump-force* *entity-ground-contact-tolerance* *entity-ground-vy-max*
    tune-physics!)
 
-  (import scheme (chicken base) (chicken fixnum) (chicken format) (chicken foreign) srfi-4
+  (import scheme (chicken base) (chicken fixnum) (chicken sort) (chicken format) (chicken foreign) srfi-4
           (downstroke keywords) (downstroke entity) (downstroke scene) (downstroke map)
           (downstroke broadphase))
 
@@ -376,14 +376,113 @@
                 (entity-set* entity pos-key stop vel-key 0)
                 entity)))))
 
+  ;; Swept mode, before a body's first tile pass of the frame: a body that
+  ;; starts the frame inside solid tiles (an entity push can leave it
+  ;; there) and moves is first taken out of them by the shortest way, so
+  ;; that no push ever carries a body through a wall (shared/DESIGN.md,
+  ;; "Readings"). A body at rest (both velocities 0) is left where it is,
+  ;; as the tile passes leave it. Where a body's frame started is
+  ;; pos - v only for a body its velocity moves: one with a #:tween, or one
+  ;; that skips both velocity steps (a tween or the game places it), is
+  ;; left to the tile passes, as the contract resolves it. (sx, sy) is
+  ;; where the frame's motion started; the entity is moved by the same
+  ;; amount.
+  (define (leave-solids entity tm sx sy)
+    (if (or (and (zero? (num entity #:vx)) (zero? (num entity #:vy)))
+            (entity-ref entity #:tween #f)
+            (and (entity-skips-pipeline? entity 'velocity-x)
+                 (entity-skips-pipeline? entity 'velocity-y)))
+        entity
+        (let-values (((dx dy) (way-out tm sx sy (num entity #:width) (num entity #:height))))
+          (if (and (eqv? dx 0) (eqv? dy 0))
+              entity
+              (entity-set* entity #:x (+ (num entity #:x) dx) #:y (+ (num entity #:y) dy))))))
+
+  ;; The shortest move (dx, dy) that takes the box at (x, y) of w x h out
+  ;; of every solid tile (one-way tiles do not count): 0 0 when it is in
+  ;; none. A box sunk into a floor goes up; one in a corner between a wall
+  ;; and a floor goes both ways at once. Exact: the free place nearest to
+  ;; the box has each coordinate either unchanged or flush with a tile
+  ;; edge, so only those candidates are tried, nearest first, within the
+  ;; distance of the best straight move (up, down, left, right: on each
+  ;; side the box is moved past the nearest solid line until it is free;
+  ;; outside the map every cell is empty, so this ends). Equal distances
+  ;; prefer the straight moves in that order, then less sideways motion.
+  (define (way-out tm x y w h)
+    (let* ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm))
+           (rows (row-grid tm)) (cols (column-grid tm)))
+      ;; the solid line of a box nearest its side `toward` (+1: the far
+      ;; side), along the axis of `grid`; #f when the box is free
+      (define (blocking grid pos size across across-size tile tile-across toward)
+        (let ((l0 (span-first pos tile)) (l1 (span-last pos size tile)))
+          (nearest-solid-line grid (if (> toward 0) l1 l0) (if (> toward 0) l0 l1) (- toward)
+                              (span-first across tile-across) (span-last across across-size tile-across))))
+      (define (free? x y) (not (blocking rows y h x w th tw 1)))
+      ;; how far the box goes along one axis toward `toward` (-1 or +1)
+      (define (straight grid pos size across across-size tile tile-across toward)
+        (let loop ((p pos))
+          (let ((line (blocking grid p size across across-size tile tile-across (- toward))))
+            (if line
+                (loop (if (> toward 0) (* (+ line 1) tile) (- (* line tile) size)))
+                (- p pos)))))
+      ;; the coordinates within `reach` of pos, on this axis, where a box
+      ;; of `size` is flush with a tile edge, and pos itself; nearest first
+      (define (candidates pos size tile reach)
+        (let loop ((edge (* tile (cell-of (- pos reach) tile))) (out (list 0)))
+          (if (> edge (+ pos size reach))
+              (sort out (lambda (a b) (or (< (abs a) (abs b)) (and (= (abs a) (abs b)) (< a b)))))
+              (loop (+ edge tile)
+                    (let ((out (if (<= (abs (- edge pos)) reach) (cons (- edge pos) out) out)))
+                      (if (<= (abs (- edge size pos)) reach) (cons (- edge size pos) out) out))))))
+      (if (free? x y)
+          (values 0 0)
+          (let* ((moves (list (cons 0 (straight rows y h x w th tw -1))
+                              (cons 0 (straight rows y h x w th tw 1))
+                              (cons (straight cols x w y h tw th -1) 0)
+                              (cons (straight cols x w y h tw th 1) 0)))
+                 (best (foldl (lambda (b m) (if (< (norm2 m) (norm2 b)) m b)) (car moves) (cdr moves)))
+                 (reach (sqrt-ceiling (norm2 best))))
+            (let try-x ((dxs (candidates x w tw reach)) (best best))
+              (if (or (null? dxs) (>= (square (car dxs)) (norm2 best)))
+                  (values (car best) (cdr best))
+                  (try-x (cdr dxs)
+                         (let try-y ((dys (candidates y h th reach)))
+                           (let ((m (and (pair? dys) (cons (car dxs) (car dys)))))
+                             (cond ((or (not m) (>= (norm2 m) (norm2 best))) best)
+                                   ((free? (+ x (car m)) (+ y (cdr m))) m)
+                                   (else (try-y (cdr dys)))))))))))))
+
+  (define (square v) (* v v))
+  (define (norm2 m) (+ (square (car m)) (square (cdr m))))
+  ;; an exact integer at least sqrt(v), for v >= 0
+  (define (sqrt-ceiling v)
+    (let-values (((s rest) (exact-integer-sqrt (->integer (ceiling v)))))
+      (if (zero? rest) s (+ s 1))))
+
+  ;; Where the frame's motion started on one axis: pos less what the
+  ;; velocity step moved (nothing when the body skips that step).
+  (define (motion-start entity pos-key vel-key velocity-step)
+    (if (entity-skips-pipeline? entity velocity-step)
+        (num entity pos-key)
+        (- (num entity pos-key) (num entity vel-key))))
+
   (define (stop-at-tiles-x scene entity)
-    (let ((tm (scene-tilemap scene)))
-      (resolve-tiles entity (swept? scene entity) #:x #:width #:vx 'velocity-x #:y #:height
+    (let* ((tm (scene-tilemap scene))
+           (swept (swept? scene entity))
+           (entity (if swept
+                       (leave-solids entity tm (motion-start entity #:x #:vx 'velocity-x) (num entity #:y))
+                       entity)))
+      (resolve-tiles entity swept #:x #:width #:vx 'velocity-x #:y #:height
                      (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm))))
 
+  ;; A body that skips the x tile pass leaves solid tiles here.
   (define (stop-at-tiles-y scene entity)
-    (let ((tm (scene-tilemap scene)))
-      (resolve-tiles entity (swept? scene entity) #:y #:height #:vy 'velocity-y #:x #:width
+    (let* ((tm (scene-tilemap scene))
+           (swept (swept? scene entity))
+           (entity (if (and swept (entity-skips-pipeline? entity 'tile-collisions-x))
+                       (leave-solids entity tm (num entity #:x) (motion-start entity #:y #:vy 'velocity-y))
+                       entity)))
+      (resolve-tiles entity swept #:y #:height #:vy 'velocity-y #:x #:width
                      (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm))))
 
   (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
