@@ -10,7 +10,7 @@
 ;;; property `file`.
 ;;;
 (module (downstroke tmx)
-  (load-tilemap tilemap-max-cells load-tileset)
+  (load-tilemap tilemap-max-cells tilemap-max-depth load-tileset)
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken fixnum) (chicken format)
@@ -18,7 +18,7 @@
           (chicken string) (chicken file) srfi-4
           (rename (only (chicken file posix) regular-file?) (regular-file? posix-regular-file?))
           (downstroke xml) (downstroke decode) (downstroke map)
-          (only (downstroke util) filter append-map any list-min list-max string-concatenate
+          (only (downstroke util) filter append-map any list-min list-max string-concatenate take drop
                 make-hash-table hash-table-ref/default hash-table-set!
                 hash-table-exists?))
   ;;; ------------------------------------------------------------------
@@ -28,6 +28,10 @@
   ;; chunks) may have: 2^26, a 8192 x 8192 map. Larger is an error, never an
   ;; attempt to allocate.
   (define tilemap-max-cells (make-parameter (* 8192 8192)))
+
+  ;; How deep groups may nest (a group in a group is depth 2). Tiled sets
+  ;; no limit; maps made by hand rarely pass 5.
+  (define tilemap-max-depth (make-parameter 100))
 
   ;; The procedure a loading error is reported from.
   (define loader (make-parameter 'load-tilemap))
@@ -90,8 +94,28 @@
 
   ;; Each attribute reader takes ctx: (file . "what is being read").
   (define (ctx-file ctx) (car ctx))
-  (define (ctx-what ctx) (cdr ctx))
-  (define (sub-ctx ctx what) (cons (car ctx) (string-append (cdr ctx) ", " what)))
+  ;; What is being read: a string, or a chain (what-before . part) that
+  ;; sub-ctx makes and that is written out only when an error names it,
+  ;; so nested groups cost memory in proportion to their depth, not to
+  ;; its square.
+  (define (ctx-what ctx)
+    (let loop ((w (cdr ctx)) (parts '()) (n 1))
+      (if (string? w)
+          (string-concatenate (intersperse (abridge (cons w parts) n) ", "))
+          (loop (car w) (cons (cdr w) parts) (+ n 1)))))
+
+  ;; The first three parts and the last four of a long path, so that an
+  ;; error 20,000 groups deep stays a line.
+  (define (abridge parts n)
+    (if (<= n 8)
+        parts
+        (append (take parts 3)
+                (list (sprintf "... ~a more groups ..." (- n 7)))
+                (drop parts (- n 4)))))
+
+  (define (intersperse xs sep)
+    (if (or (null? xs) (null? (cdr xs))) xs (cons (car xs) (cons sep (intersperse (cdr xs) sep)))))
+  (define (sub-ctx ctx what) (cons (car ctx) (cons (cdr ctx) what)))
 
   (define (bad-attr ctx node name expected)
     (tmx-error (ctx-file ctx) "~a: attribute ~a=~s of <~a> is not ~a"
@@ -644,6 +668,25 @@
       (tmx-error (ctx-file ctx) "~a: ~a cells is more than the limit of ~a (tilemap-max-cells)"
                  (ctx-what ctx) count (tilemap-max-cells))))
 
+  ;; The limit is on the whole map: its tile layers together.
+  (define (check-map-cells file count layers)
+    (when (> count (tilemap-max-cells))
+      (tmx-error file "~a cells in ~a tile layer~a: more than the limit of ~a (tilemap-max-cells)"
+                 count layers (if (= layers 1) "" "s") (tilemap-max-cells))))
+
+  ;; What an infinite map's chunks hold, from their width and height, before
+  ;; any is decoded.
+  (define (declared-chunk-cells ctx tile-nodes)
+    (foldl (lambda (sum node)
+             (let ((data (x-child node 'data)))
+               (if (not data)
+                   sum
+                   (foldl (lambda (sum ch)
+                            (+ sum (* (or (attr-int ctx ch 'width #f 0) 0)
+                                      (or (attr-int ctx ch 'height #f 0) 0))))
+                          sum (x-children data 'chunk)))))
+           0 tile-nodes))
+
   ;; The cells of a <data> or <chunk>, w x h of them.
   (define (decode-cells ctx node encoding compression w h)
     (let ((count (* w h)))
@@ -681,18 +724,26 @@
   ;; element for a second pass (infinite maps need every chunk first).
   ;; Returns a list of (layer-node . inherited) for every layer, in document
   ;; order, and builds records later.
+  ;; Every layer and group under node, as (element . inherited), in
+  ;; document order (a group before what it holds).
   (define (collect-layers ctx node inh)
-    (append-map
-     (lambda (child)
-       (case (car child)
-         ((layer objectgroup imagelayer)
-          (list (cons child inh)))
-         ((group)
-          (let ((gctx (sub-ctx ctx (sprintf "group ~s" (attr-string child 'name "")))))
-            (cons (cons child inh)
-                  (collect-layers gctx child (compose-inherited gctx child inh)))))
-         (else '())))
-     (x-children node)))
+    (let walk ((ctx ctx) (node node) (inh inh) (depth 1) (out '()) (k reverse))
+      (let each ((children (x-children node)) (out out))
+        (if (null? children)
+            (k out)
+            (let ((child (car children)))
+              (case (car child)
+                ((layer objectgroup imagelayer)
+                 (each (cdr children) (cons (cons child inh) out)))
+                ((group)
+                 (let ((gctx (sub-ctx ctx (sprintf "group ~s" (attr-string child 'name "")))))
+                   (when (> depth (tilemap-max-depth))
+                     (tmx-error (ctx-file ctx) "~a: groups nest more than ~a deep (tilemap-max-depth)"
+                                (ctx-what gctx) (tilemap-max-depth)))
+                   (walk gctx child (compose-inherited gctx child inh) (+ depth 1)
+                         (cons (cons child inh) out)
+                         (lambda (out) (each (cdr children) out)))))
+                (else (each (cdr children) out))))))))
 
   (define (compose-inherited ctx node inh)
     (make-inherited (+ (in-offset-x inh) (attr-number ctx node 'offsetx 0))
@@ -746,35 +797,43 @@
   ;; Gids written in the map itself are already in the map's gid space.
   (define (map-gid ctx raw) raw)
 
-  ;; Rebuild the nested tree from the flat (node . inherited) list: each
-  ;; group's children are the entries whose node is a child of it.
+  ;; Rebuild the nested tree from the flat (node . inherited) list, in one
+  ;; pass from the end: a layer's record goes on a stack, and a group takes
+  ;; its direct children off the top of it (the entries after a group are
+  ;; its contents, already built). `cells-of` is called for the tile layers
+  ;; from the last to the first. Returns the top level's layers and every
+  ;; layer, both in document order.
   (define (build-tree file entries cells-of st)
-    (let ((built (map (lambda (e) (cons (car e) #f)) entries)))
-      ;; Build bottom-up: process entries in reverse so that children exist
-      ;; before their group.
-      (let loop ((es (reverse entries)))
-        (unless (null? es)
+    (let loop ((es (reverse entries)) (stack '()) (all '()))
+      (if (null? es)
+          (values stack all)
           (let* ((node (caar es))
                  (inh (cdar es))
-                 (children
-                  (if (eq? (car node) 'group)
-                      (filter-map-built built (x-children node))
-                      '()))
-                 (cells (and (eq? (car node) 'layer) (cells-of node))))
-            (set-cdr! (assq node built)
-                      (build-layer file node inh
-                                   (and cells (car cells))
-                                   (and cells (cadr cells)) (and cells (caddr cells))
-                                   st children)))
-          (loop (cdr es))))
-      built))
+                 (group? (eq? (car node) 'group)))
+            (let-values (((children rest)
+                          (if group?
+                              (split-at* stack (count-layer-children node))
+                              (values '() stack))))
+              (let* ((cells (and (eq? (car node) 'layer) (cells-of node)))
+                     (layer (build-layer file node inh
+                                         (and cells (car cells))
+                                         (and cells (cadr cells)) (and cells (caddr cells))
+                                         st children)))
+                (loop (cdr es) (cons layer rest) (cons layer all))))))))
 
-  (define (filter-map-built built nodes)
-    (let loop ((ns nodes) (acc '()))
-      (if (null? ns)
-          (reverse acc)
-          (let ((p (assq (car ns) built)))
-            (loop (cdr ns) (if (and p (cdr p)) (cons (cdr p) acc) acc))))))
+  (define (count-layer-children node)
+    (let loop ((cs (cdr node)) (n 0))
+      (cond ((null? cs) n)
+            ((and (element? (car cs)) (memq (caar cs) '(layer objectgroup imagelayer group)))
+             (loop (cdr cs) (+ n 1)))
+            (else (loop (cdr cs) n)))))
+
+  ;; The first n items of xs and the rest.
+  (define (split-at* xs n)
+    (let loop ((xs xs) (n n) (taken '()))
+      (if (or (zero? n) (null? xs))
+          (values (reverse taken) xs)
+          (loop (cdr xs) (- n 1) (cons (car xs) taken)))))
 
   ;;; ------------------------------------------------------------------
   ;;; Loading: the map
@@ -858,6 +917,10 @@
                                    (x-children root 'tileset)))
       (let* ((entries (collect-layers ctx root top-level))
              (tile-nodes (filter (lambda (n) (eq? (car n) 'layer)) (map car entries)))
+             ;; every tile layer holds the map's cells: the limit is on them all
+             (_ (unless infinite?
+                  (check-map-cells path (* map-w map-h (length tile-nodes)) (length tile-nodes))))
+             (_ (when infinite? (check-map-cells path (declared-chunk-cells ctx tile-nodes) (length tile-nodes))))
              ;; node -> decoded data: finite: (u32vector); infinite: chunks
              (decoded
               (map (lambda (node)
@@ -892,10 +955,15 @@
              (w (if infinite? (- x1 x0) map-w))
              (h (if infinite? (- y1 y0) map-h)))
         (when infinite?
-          (check-cells (cons path "the union of the chunks") (* w h)))
-        (let* ((cells-of
+          (check-cells (cons path "the union of the chunks") (* w h))
+          (check-map-cells path (* w h (length tile-nodes)) (length tile-nodes)))
+        (let*-values
+            (((pending) (reverse decoded))   ; build-tree asks from the last
+             ((cells-of)
                 (lambda (node)
-                  (let ((d (cdr (assq node decoded))))
+                  (let ((d (if (and (pair? pending) (eq? (caar pending) node))
+                               (let ((d (cdar pending))) (set! pending (cdr pending)) d)
+                               (error 'read-tilemap "tile layers out of order"))))
                     (if infinite?
                         (let ((out (make-u32vector (* w h) 0)))
                           (for-each
@@ -909,11 +977,9 @@
                            d)
                           (list out w h))
                         (list d w h)))))
-               (built (build-tree path entries cells-of st))
-               (all (map cdr built))
-               (tree (filter-map-built built (x-children root)))
-               (tile-layers (filter (lambda (l) (eq? (layer-kind l) 'tile)) all))
-               (tilesets (sort-tilesets (state-tilesets st))))
+             ((tree all) (build-tree path entries cells-of st))
+             ((tile-layers) (filter (lambda (l) (eq? (layer-kind l) 'tile)) all))
+             ((tilesets) (sort-tilesets (state-tilesets st))))
           (check-gids path (map (lambda (l) (cons l (cons x0 y0))) tile-layers) tilesets)
           (check-object-gids path (filter (lambda (l) (eq? (layer-kind l) 'object)) all) tilesets)
           (make-tilemap w h tw th tile-layers

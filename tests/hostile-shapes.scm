@@ -29,7 +29,10 @@
    (number->string width) "\" height=\"" (number->string height)
    "\" tilewidth=\"8\" tileheight=\"8\"" attrs ">" tileset body "</map>"))
 
-(define (test name expected value) (write (list name value)) (newline))
+(define (test name expected #!optional (value expected)) (write (list name value)) (newline))
+(import (chicken condition))
+(define (ho-error thunk)
+  (handle-exceptions e ((condition-property-accessor 'exn 'message "?") e) (thunk) "no error"))
 (let ()
   (test "list-max and list-min over 100,000 numbers" '(99999 0)
         (let ((l (iota ho-n))) (list (list-max l) (list-min l))))
@@ -78,15 +81,53 @@
                               tileset: (string-append "<tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"0\" columns=\"0\">"
                                                       tiles "</tileset>"))))
          (tm (load-tilemap p)))
-    (test "the cell names the 100,000th tile" ho-n (tilemap-tile-at tm 0 0))))
+    (test "the cell names the 100,000th tile" ho-n (tilemap-tile-at tm 0 0)))
+
+  ;; 100,000 layers side by side, and 100,000 groups one in another (with
+  ;; the depth limit raised): built in one pass, and the error context of
+  ;; the innermost costs memory in proportion to the depth (this child runs
+  ;; in a bounded address space; the nesting once needed over 3 GB)
+  (let* ((layers (ho-repeat ho-n (lambda (i) (sprintf "<objectgroup id=\"~a\" name=\"o~a\"/>" (+ i 1) i))))
+         (tm (load-tilemap (ho-write "layers.tmx" (ho-map layers)))))
+    (test "100,000 object layers, in order" (list ho-n "o0" "o99999")
+          (let ((tree (tilemap-layer-tree tm)))
+            (list (length tree) (layer-name (car tree)) (layer-name (list-ref tree (- ho-n 1)))))))
+  (let* ((open (ho-repeat ho-n (lambda (i) (sprintf "<group id=\"~a\" name=\"g~a\" offsetx=\"1\">" (+ i 1) i))))
+         (close (ho-repeat ho-n (lambda (i) "</group>")))
+         (p (ho-write "nested.tmx"
+                      (ho-map (string-append open "<layer id=\"0\" name=\"deep\" width=\"1\" height=\"1\"><data encoding=\"csv\">0</data></layer>" close))))
+         (tm (parameterize ((tilemap-max-depth (+ ho-n 1))) (load-tilemap p))))
+    (test "100,000 nested groups load when the limit allows them, offsets added" ho-n
+          (layer-offset-x (car (tilemap-layers tm))))
+    (test "past tilemap-max-depth: an error naming the file, the group and the limit"
+          (ho-error (lambda () (load-tilemap p)))))
+  (let ((p (ho-write "nested-bad.tmx"
+                     (ho-map (string-append (ho-repeat 20000 (lambda (i) (sprintf "<group name=\"g~a\">" i)))
+                                            "<group name=\"bad\" offsetx=\"abc\"/>"
+                                            (ho-repeat 20000 (lambda (i) "</group>")))))))
+    (test "a bad group 20,000 groups deep (limit raised): the error names its path, briefly"
+          (parameterize ((tilemap-max-depth 30000)) (ho-error (lambda () (load-tilemap p))))))
+
+  ;; four 8192 x 8192 zstd layers in a map of a few hundred bytes: the
+  ;; limit on cells is the map's, checked before anything is decoded
+  (let ((p (ho-write "big.tmx"
+                     (ho-map (ho-repeat 4 (lambda (i) (sprintf "<layer id=\"~a\" name=\"l~a\" width=\"8192\" height=\"8192\"><data encoding=\"base64\" compression=\"zstd\">KLUv/QBYAAA=</data></layer>" (+ i 1) i)))
+                             width: 8192 height: 8192))))
+    (test "four 8192 x 8192 layers: more than tilemap-max-cells in all"
+          (ho-error (lambda () (load-tilemap p)))))
+  (let ((p (ho-write "big-chunks.tmx"
+                     (ho-map (string-append "<layer id=\"1\" name=\"l\" width=\"1\" height=\"1\"><data encoding=\"csv\">"
+                                            (ho-repeat 5 (lambda (i) (sprintf "<chunk x=\"~a\" y=\"0\" width=\"4096\" height=\"4096\">0</chunk>" (* i 4096))))
+                                            "</data></layer>")
+                             attrs: " infinite=\"1\""))))
+    (test "an infinite map's chunks, 5 x 4096 x 4096: more than tilemap-max-cells, before decoding any"
+          (ho-error (lambda () (load-tilemap p))))))
 
 
 ;; Map sources that are not regular files: each load must fail at once
 ;; with an error naming the map and the source (before, a FIFO or
 ;; /dev/stdin blocked the loader for ever).
-(import (chicken condition) (chicken process))
-(define (ho-error thunk)
-  (handle-exceptions e ((condition-property-accessor 'exn 'message "?") e) (thunk) "no error"))
+(import (chicken process))
 (define fifo (make-pathname ho-dir "pipe.tsx"))
 (system (sprintf "mkfifo '~a'" fifo))
 (define (map-with-tileset source)

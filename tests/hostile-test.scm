@@ -8,10 +8,14 @@
 (import scheme (chicken base) (chicken io) (chicken string) (chicken format)
         (chicken pathname) (chicken process) (chicken condition) (downstroke test))
 
+(define hostile-address-space-kb (* 2 1024 1024))
+
 (define ho-results
   (with-input-from-pipe
-   (sprintf "CHICKEN_REPOSITORY_PATH=~a timeout 300 csi -q -s hostile-shapes.scm"
-            (qs (absolute-repository-path)))
+   ;; in a bounded address space (2 GB), so that a regression in memory
+   ;; fails here instead of exhausting the machine
+   (sprintf "ulimit -v ~a; CHICKEN_REPOSITORY_PATH=~a timeout 300 csi -q -s hostile-shapes.scm"
+            hostile-address-space-kb (qs (absolute-repository-path)))
    ;; whatever is not a datum (an error's trace) ends the reading
    (lambda () (let loop ((out '()))
                 (let ((x (handle-exceptions e #!eof (read))))
@@ -35,12 +39,31 @@
                   (list "the map covers the union of 100,000 chunks" '(-50000 100000))
                   (list "the last chunk's cell" 1)
                   (list "the property is whole" 200000)
-                  (list "the cell names the 100,000th tile" 100000))))
+                  (list "the cell names the 100,000th tile" 100000)
+                  (list "100,000 object layers, in order" '(100000 "o0" "o99999"))
+                  (list "100,000 nested groups load when the limit allows them, offsets added" 100000))))
 
 (define (every-substring? parts text)
   (or (null? parts) (and (substring-index (car parts) text) (every-substring? (cdr parts) text))))
 
 ;; (name . texts the error must contain)
+(test-group "hostile: limits on what a map may ask for, each named in its error"
+  (for-each (lambda (c)
+              (let ((msg (ho-result (car c))))
+                (test-assert (sprintf "~a: ~a" (car c) msg)
+                             (and (string? msg) (every-substring? (cdr c) msg)
+                                  (< (string-length msg) 400)))))
+            (list (list "past tilemap-max-depth: an error naming the file, the group and the limit"
+                        "nested.tmx" "group \"g100\"" "groups nest more than 100 deep (tilemap-max-depth)")
+                  (list "a bad group 20,000 groups deep (limit raised): the error names its path, briefly"
+                        "nested-bad.tmx" "group \"g0\"" "19995 more groups" "group \"g19999\", group \"bad\""
+                        "offsetx=\"abc\"")
+                  (list "four 8192 x 8192 layers: more than tilemap-max-cells in all"
+                        "big.tmx" "268435456 cells in 4 tile layers" "limit of 67108864 (tilemap-max-cells)")
+                  (list "an infinite map's chunks, 5 x 4096 x 4096: more than tilemap-max-cells, before decoding any"
+                        "big-chunks.tmx" "83886080 cells in 1 tile layer:" "(tilemap-max-cells)"))))
+
+
 (test-group "hostile: map sources are read only from regular files"
   (for-each (lambda (c)
               (let ((msg (ho-result (car c))))
