@@ -13,7 +13,7 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util keywords srfi-197 entity check camera tween animation xml decode map tmx tilemap scene broadphase physics overlap pipeline sdl2 renderer input sound text assets prefabs objects game level repl engine
+MODULES := test util media-header keywords srfi-197 entity check camera tween animation xml decode map tmx tilemap scene broadphase physics overlap pipeline sdl2 renderer input sound text assets prefabs objects game level repl engine
 
 # C libraries a module binds through the FFI (passed to the linker by csc).
 LINK_xml    := -L -lexpat
@@ -59,8 +59,8 @@ $(BUILD)/downstroke.%.so: %.scm | $(BUILD)
 
 # What each module imports from this library (compile-time dependencies);
 # tests/layout-test.scm checks these lines against the imports and the .egg.
-$(BUILD)/downstroke.sound.so: $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.sdl2.so: $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.sound.so: $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.media-header.so
+$(BUILD)/downstroke.sdl2.so: $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.media-header.so
 $(BUILD)/downstroke.decode.so: $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so

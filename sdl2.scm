@@ -62,7 +62,7 @@
    render-clear! render-fill-rect! render-draw-rect! render-copy!
    render-present! render-read-pixels
    ;; textures
-   img-load-texture! destroy-texture! texture? texture-alive? texture-size
+   img-load-texture! destroy-texture! texture? texture-alive? texture-size max-image-pixels
    texture-alpha-mod-set! texture-alpha-mod
    texture-color-mod-set! texture-color-mod
    ;; surfaces
@@ -74,9 +74,10 @@
    poll-event! poll-events! push-key-event! push-quit-event!
    key-symbols keycode->key key->keycode controller-buttons controller-axes)
 
-  (import (downstroke keywords))
+  (import (downstroke keywords) (downstroke media-header))
   (import scheme (chicken base) (chicken foreign) (chicken condition)
-          (chicken gc) (chicken format) (chicken bitwise) (chicken fixnum) srfi-4)
+          (chicken gc) (chicken format) (chicken bitwise) (chicken fixnum) srfi-4
+          (only (chicken file posix) regular-file?) (only (chicken file) file-exists?))
 
   (foreign-declare #<<EOF
 #include <SDL.h>
@@ -646,9 +647,27 @@ EOF
   ;;; ------------------------------------------------------------------
   ;;; Textures
 
+  ;; The most pixels an image file may have: 8192 x 8192 (256 MB as RGBA).
+  ;; PNG, JPEG, GIF, BMP, QOI and WebP are measured from their header,
+  ;; before anything is decoded; another format SDL_image reads (TGA ...)
+  ;; is measured once decoded, and freed again when it is too large.
+  (define max-image-pixels (make-parameter (* 8192 8192)))
+
+  (define (too-many-pixels who path w h)
+    (error who (sprintf "~s is ~a x ~a pixels: more than the limit of ~a (max-image-pixels)"
+                        path w h (max-image-pixels))))
+
+  (define (check-image-header who path)
+    (when (and (file-exists? path) (not (regular-file? path)))
+      (error who (sprintf "~s is not a regular file (a directory, device or pipe)" path)))
+    (let ((size (and (file-exists? path) (image-file-size path))))
+      (when (and size (> (* (car size) (cadr size)) (max-image-pixels)))
+        (too-many-pixels who path (car size) (cadr size)))))
+
   ;; A texture from an image file (PNG and whatever else SDL_image reads).
   (define (img-load-texture! r path)
     (unless (string? path) (error 'img-load-texture! "the path must be a string" path))
+    (check-image-header 'img-load-texture! path)
     (let* ((rp (live-renderer 'img-load-texture! r))
            (p ((foreign-lambda c-pointer "IMG_LoadTexture" c-pointer c-string) rp path)))
       (unless p (sdl-error 'img-load-texture! "IMG_LoadTexture"
@@ -658,6 +677,10 @@ EOF
         ((foreign-lambda int "SDL_QueryTexture" c-pointer c-pointer c-pointer
                          (c-pointer int) (c-pointer int))
          p #f #f (location w) (location h))
+        (when (> (* w h) (max-image-pixels))
+          ((foreign-lambda void "SDL_DestroyTexture" c-pointer) p)
+          (set! count-textures (- count-textures 1))
+          (too-many-pixels 'img-load-texture! path w h))
         (set-finalizer! (%make-texture p r w h) (finalizer destroy-texture!)))))
 
   ;; (values width height)
@@ -722,8 +745,14 @@ EOF
   ;; an error names the file.
   (define (img-load-surface! path)
     (unless (string? path) (error 'img-load-surface! "the path must be a string" path))
+    (check-image-header 'img-load-surface! path)
     (let ((raw ((foreign-lambda c-pointer "IMG_Load" c-string) path)))
       (unless raw (sdl-error 'img-load-surface! "IMG_Load" (sprintf "cannot load ~s" path)))
+      (let ((w ((foreign-lambda* int ((c-pointer s)) "C_return(((SDL_Surface*)s)->w);") raw))
+            (h ((foreign-lambda* int ((c-pointer s)) "C_return(((SDL_Surface*)s)->h);") raw)))
+        (when (> (* w h) (max-image-pixels))
+          ((foreign-lambda void "SDL_FreeSurface" c-pointer) raw)
+          (too-many-pixels 'img-load-surface! path w h)))
       (let ((p ((foreign-lambda* c-pointer ((c-pointer s))
                   "SDL_Surface *c = SDL_ConvertSurfaceFormat((SDL_Surface*)s, SDL_PIXELFORMAT_RGBA32, 0);
                    SDL_FreeSurface((SDL_Surface*)s);

@@ -42,11 +42,11 @@
    load-sounds! sound-loaded? sound-names play-sound sound-playing?
    load-music! play-music! stop-music! music-loaded? music-playing?
    sound-volume-set! music-volume-set! sound-volume music-volume
-   volume->mixer sound-resource-counts)
+   volume->mixer sound-resource-counts max-sound-file-size)
 
-  (import (downstroke keywords))
+  (import (downstroke keywords) (downstroke media-header))
   (import scheme (chicken base) (chicken foreign) (chicken condition)
-          (chicken gc) (chicken format))
+          (chicken gc) (chicken format) (only (chicken file posix) regular-file? file-size) (only (chicken file) file-exists?))
 
   (foreign-declare #<<EOF
 #include <SDL.h>
@@ -180,9 +180,26 @@ EOF
         ;; SDL_mixer halts it first when it is the music playing.
         ((foreign-lambda void "Mix_FreeMusic" c-pointer) p))))
 
+  ;; The largest sound or music file loaded: 128 MB (SDL_mixer decodes a
+  ;; sound whole, and a 128 MB WAV is over ten minutes of CD audio).
+  (define max-sound-file-size (make-parameter (* 128 1024 1024)))
+
+  ;; Before SDL_mixer sees a file: a regular file, not too large, and no
+  ;; WAV header that SDL would divide by zero with.
+  (define (check-sound-file who path)
+    (cond ((not (file-exists? path)) #f)   ; SDL says why it cannot open it
+          ((not (regular-file? path))
+           (error who (sprintf "~s is not a regular file (a directory, device or pipe)" path)))
+          ((> (file-size path) (max-sound-file-size))
+           (error who (sprintf "~s is ~a bytes: more than the limit of ~a (max-sound-file-size)"
+                               path (file-size path) (max-sound-file-size))))
+          ((wav-file-problem path)
+           => (lambda (why) (error who (sprintf "~s is not a WAV file SDL_mixer can play: ~a" path why))))))
+
   (define (load-chunk who path)
     (unless (string? path)
       (error who "sound file must be a string" path))
+    (check-sound-file who path)
     ;; Opening the file ourselves keeps SDL's reason ("Couldn't open ...");
     ;; Mix_LoadWAV would replace it with a message about a NULL source.
     (let* ((rw ((foreign-lambda c-pointer "SDL_RWFromFile" c-string c-string) path "rb"))
@@ -194,6 +211,7 @@ EOF
   (define (load-music who path)
     (unless (string? path)
       (error who "music file must be a string" path))
+    (check-sound-file who path)
     (let ((p ((foreign-lambda c-pointer "Mix_LoadMUS" c-string) path)))
       (unless p (mix-error who "Mix_LoadMUS" path))
       (set! loaded-count (+ loaded-count 1))

@@ -197,4 +197,35 @@
     (shutdown-audio!)
     (test "freed again" 0 (snd-live))))
 
+;; Files checked before SDL_mixer sees them (downstroke media-header): a
+;; WAV header SDL would divide by, a file too large, a device.
+(define (snd-bad-wav! path offset value size)
+  (let ((v (with-input-from-file snd-wav (lambda () (read-u8vector #f)) #:binary)))
+    (snd-put! v offset value size)
+    (call-with-output-file path (lambda (port) (write-u8vector v port)) #:binary)
+    path))
+
+(test-group "sound: files are checked before SDL_mixer reads them"
+  (init-audio!)
+  (let ((zero-channels (snd-bad-wav! (create-temporary-file ".wav") 22 0 2))
+        (zero-rate (snd-bad-wav! (create-temporary-file ".wav") 24 0 4))
+        (zero-align (snd-bad-wav! (create-temporary-file ".wav") 32 0 2)))
+    (test-error "a WAV with 0 channels: an error naming the file, not a floating-point exception"
+                (snd-says? zero-channels "0 channels")
+                (load-sounds! `((a . ,zero-channels))))
+    (test-error "the same as music" (snd-says? zero-channels "0 channels") (load-music! zero-channels))
+    (test-error "0 samples a second" (snd-says? "0 samples a second") (load-sounds! `((a . ,zero-rate))))
+    (test-error "0 bytes a block" (snd-says? "0 bytes a block") (load-sounds! `((a . ,zero-align))))
+    (test "nothing was registered" #f (sound-loaded? 'a))
+    (for-each delete-file* (list zero-channels zero-rate zero-align)))
+  (test-error "/dev/zero is not a regular file (it once took 3.7 GB before failing)"
+              (snd-says? "/dev/zero" "not a regular file")
+              (load-sounds! '((z . "/dev/zero"))))
+  (test-error "a file over max-sound-file-size names the size and the limit"
+              (snd-says? snd-wav "4454 bytes" "limit of 1000 (max-sound-file-size)")
+              (parameterize ((max-sound-file-size 1000)) (load-sounds! `((big . ,snd-wav)))))
+  (load-sounds! `((fine . ,snd-wav)))
+  (test-assert "a good WAV under the limit still loads" (sound-loaded? 'fine))
+  (shutdown-audio!))
+
 (for-each delete-file* (list snd-wav snd-wav2 snd-garbage))
