@@ -263,5 +263,36 @@
          (load-tileset (rn-path "sheet.tsx") first-gid: 5))
    '(1 5)))
 
+
+;; Values from a map far outside SDL's int range: each draws (or is
+;; culled) without error, and nothing wraps into the view.
+(test-group "renderer: far-away layers and objects from a map"
+  (let* ((path (rn-path "far.tmx"))
+         (_ (with-output-to-file path
+              (lambda ()
+                (printf "<?xml version=\"1.0\"?><map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"4\" height=\"3\" tilewidth=\"8\" tileheight=\"8\">~%")
+                (printf "<tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" spacing=\"1\" margin=\"2\" tilecount=\"4\" columns=\"2\"><image source=\"tiles.png\" width=\"21\" height=\"21\"/></tileset>~%")
+                (printf "<group id=\"1\" name=\"far\" offsetx=\"1e308\"><layer id=\"2\" name=\"g\" width=\"4\" height=\"3\"><data encoding=\"csv\">1,1,1,1,1,1,1,1,1,1,1,1</data></layer></group>~%")
+                (printf "<layer id=\"3\" name=\"p\" width=\"4\" height=\"3\" parallaxx=\"1e308\"><data encoding=\"csv\">2,2,2,2,2,2,2,2,2,2,2,2</data></layer>~%")
+                (printf "<objectgroup id=\"4\" name=\"o\"><object id=\"1\" x=\"4\" y=\"4\" width=\"8\" height=\"9223372036854775807\"/>~%")
+                (printf "<object id=\"2\" gid=\"4\" x=\"-1e300\" y=\"8\" width=\"8\" height=\"8\"/></objectgroup></map>~%"))))
+         (tm (load-tilemap path))
+         (draw (lambda (cam-x) (rn-draw (make-scene tilemap: tm background: rn-bg
+                                                    camera: (make-camera x: cam-x y: 0))
+                                        textures: rn-textures))))
+    (test "the group's offset is 1e308" 1e308 (layer-offset-x (car (tilemap-layers tm))))
+    (let ((px (draw 0)))
+      (test "the layer 1e308 px away is not drawn; the parallax layer at camera 0 is"
+            (list rn-yellow rn-yellow) (list (px 0 20) (px 31 0)))
+      (test "nothing of the 1e300-px tile object wraps into the view" #t
+            (not (member rn-cyan (map (lambda (x) (px x 12)) '(0 4 8 16 24 31))))))
+    (let* ((px (draw 1))
+           (tile-colours (list rn-red rn-green rn-blue rn-white rn-yellow rn-cyan)))
+      (test "with the camera at 1 the parallax layer is 1e308 px away too: no tile pixel in the frame" 0
+            (let count ((y 0) (x 0) (n 0))
+              (cond ((= y 24) n)
+                    ((= x 32) (count (+ y 1) 0 n))
+                    (else (count y (+ x 1) (if (member (px x y) tile-colours) (+ n 1) n)))))))))
+
 (free-surface! rn-surface)
 (delete-directory rn-dir #t)
