@@ -113,7 +113,10 @@
     (let ((start (current-milliseconds)))
       (for-each (lambda (f) (fuzz-tmx-run f f))
                 '("enc-csv.tmx" "enc-xml.tmx" "enc-base64.tmx" "enc-zlib.tmx" "enc-gzip.tmx"
-                  "enc-zstd.tmx" "infinite.tmx" "features.tmx"))
+                  "enc-zstd.tmx" "infinite.tmx" "features.tmx"
+                  ;; the hostile shapes, small: groups 12 deep with offsets,
+                  ;; a 60-point polygon, 48 chunks in two layers
+                  "hostile-nested.tmx" "hostile-chunks.tmx"))
       (fuzz-tmx-run "features.tmx" "tilesets/terrain.tsx")
       (fuzz-tmx-run "features.tmx" "templates/enemy.tx")
       (test-assert "the mutation test ran in under 60 s"

@@ -119,3 +119,27 @@
                                 (make-scene entities: (list (list #:type 'box #:x 0 #:y 0 #:vy 1.7976931348623157e308
                                                                   #:ay 1e308 #:gravity? #t)))
                                 16)))))
+
+;; Images, sounds and text that ask for gigabytes, in a child with 768 MB
+;; of address space (hostile-media.scm): each must be a prompt error
+;; naming the file or procedure and the limit.
+(define hm-results
+  (with-input-from-pipe
+   (sprintf "ulimit -v 786432; CHICKEN_REPOSITORY_PATH=~a timeout 300 csi -q -s hostile-media.scm"
+            (qs (absolute-repository-path)))
+   (lambda () (let loop ((out '()))
+                (let ((x (handle-exceptions e #!eof (read))))
+                  (if (eof-object? x) (reverse out) (loop (cons x out))))))))
+
+(test-group "hostile: media that ask for gigabytes, in a bounded address space"
+  (for-each (lambda (c)
+              (let* ((r (assoc (car c) (filter-pairs hm-results)))
+                     (msg (and r (cadr r))))
+                (test-assert (sprintf "~a: ~a" (car c) (or msg "missing: the child stopped"))
+                             (and (string? msg) (every-substring? (cdr c) msg)))))
+            (list (list "a 33-byte PNG of 20000 x 20000, as a texture" "huge.png" "20000 x 20000 pixels" "(max-image-pixels)")
+                  (list "the same PNG as a surface" "huge.png" "(max-image-pixels)")
+                  (list "load-sounds! of /dev/zero" "\"/dev/zero\" is not a regular file")
+                  (list "load-music! of /dev/zero" "\"/dev/zero\" is not a regular file")
+                  (list "a font of 2^32 points" "DejaVuSans.ttf" "max-font-size (1000)")
+                  (list "a 1 MB string to draw-text!" "draw-text!" "1048576 characters" "max-text-length (10000)"))))
