@@ -65,7 +65,7 @@ $(BUILD)/downstroke.decode.so: $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.map.so:       $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.media-header.so $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.tmx.so $(BUILD)/downstroke.objects.so
 $(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.camera.so $(BUILD)/downstroke.check.so
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
@@ -74,7 +74,7 @@ $(BUILD)/downstroke.check.so:     $(BUILD)/downstroke.keywords.so $(BUILD)/downs
 $(BUILD)/downstroke.camera.so:    $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so
 $(BUILD)/downstroke.pipeline.so:  $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
 $(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.media-header.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.assets.so:    $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.prefabs.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.objects.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.prefabs.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so

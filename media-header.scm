@@ -5,9 +5,23 @@
 ;;; loads no C library.
 
 (module (downstroke media-header)
-  (image-file-size wav-file-problem)
+  (file-problem image-file-size wav-file-problem)
 
-  (import scheme (chicken base) (chicken io) (chicken format) (chicken bitwise))
+  (import scheme (chicken base) (chicken io) (chicken format) (chicken bitwise)
+          (only (chicken file) file-exists?) (only (chicken file posix) regular-file?))
+
+  ;; Why a path cannot be read as a file, or #f when it can: it must name
+  ;; a regular file. A directory, a FIFO or /dev/stdin would block a loader
+  ;; (or feed it for ever: /dev/zero); a NUL byte cannot reach the system
+  ;; at all. The one rule for maps, images, sounds and fonts.
+  (define (file-problem path)
+    (cond ((let loop ((i 0))
+             (and (< i (string-length path))
+                  (or (char=? (string-ref path i) #\x0) (loop (+ i 1)))))
+           "has a NUL byte in its name")
+          ((not (file-exists? path)) "not found")
+          ((not (regular-file? path)) "is not a regular file (a directory, device or pipe)")
+          (else #f)))
 
   ;; The first n bytes of a file, as a string (shorter at its end).
   (define (file-head path n)

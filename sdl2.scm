@@ -77,7 +77,7 @@
   (import (downstroke keywords) (downstroke media-header))
   (import scheme (chicken base) (chicken foreign) (chicken condition)
           (chicken gc) (chicken format) (chicken bitwise) (chicken fixnum) srfi-4
-          (only (chicken file posix) regular-file?) (only (chicken file) file-exists?))
+          )
 
   (foreign-declare #<<EOF
 #include <SDL.h>
@@ -658,9 +658,10 @@ EOF
                         path w h (max-image-pixels))))
 
   (define (check-image-header who path)
-    (when (and (file-exists? path) (not (regular-file? path)))
-      (error who (sprintf "~s is not a regular file (a directory, device or pipe)" path)))
-    (let ((size (and (file-exists? path) (image-file-size path))))
+    (let ((why (file-problem path)))   ; SDL_image says "not found" itself
+      (when (and why (not (equal? why "not found")))
+        (error who (sprintf "~s ~a" path why))))
+    (let ((size (and (not (file-problem path)) (image-file-size path))))
       (when (and size (> (* (car size) (cadr size)) (max-image-pixels)))
         (too-many-pixels who path (car size) (cadr size)))))
 

@@ -46,7 +46,7 @@
 
   (import (downstroke keywords) (downstroke media-header))
   (import scheme (chicken base) (chicken foreign) (chicken condition)
-          (chicken gc) (chicken format) (only (chicken file posix) regular-file? file-size) (only (chicken file) file-exists?))
+          (chicken gc) (chicken format) (only (chicken file posix) file-size))
 
   (foreign-declare #<<EOF
 #include <SDL.h>
@@ -187,9 +187,8 @@ EOF
   ;; Before SDL_mixer sees a file: a regular file, not too large, and no
   ;; WAV header that SDL would divide by zero with.
   (define (check-sound-file who path)
-    (cond ((not (file-exists? path)) #f)   ; SDL says why it cannot open it
-          ((not (regular-file? path))
-           (error who (sprintf "~s is not a regular file (a directory, device or pipe)" path)))
+    (cond ((equal? (file-problem path) "not found") #f)   ; SDL says so itself
+          ((file-problem path) => (lambda (why) (error who (sprintf "~s ~a" path why))))
           ((> (file-size path) (max-sound-file-size))
            (error who (sprintf "~s is ~a bytes: more than the limit of ~a (max-sound-file-size)"
                                path (file-size path) (max-sound-file-size))))

@@ -47,7 +47,7 @@
    draw-sprite-text! sprite-text-size
    max-font-size max-text-length)
 
-  (import (downstroke keywords))
+  (import (downstroke keywords) (only (downstroke media-header) file-problem))
   (import scheme (chicken base) (chicken foreign) (chicken gc) (chicken format)
           (chicken file) (chicken condition)
           (downstroke sdl2))
@@ -128,8 +128,10 @@ EOF
     (when (> size (max-font-size))
       (error (sprintf "open-font: ~s at ~a points is above max-font-size (~a); (max-font-size N) allows more"
                       path (if (> size 1000000000) "more than 10^9" size) (max-font-size))))
-    (unless (file-exists? path)
-      (text-error 'open-font (sprintf "TTF_OpenFont: cannot open ~s: no such file" path)))
+    (let ((why (file-problem path)))
+      (cond ((equal? why "not found")
+             (text-error 'open-font (sprintf "TTF_OpenFont: cannot open ~s: no such file" path)))
+            (why (text-error 'open-font (sprintf "TTF_OpenFont: cannot open ~s: it ~a" path why)))))
     (ttf-init! 'open-font)
     (let ((p ((foreign-lambda c-pointer "TTF_OpenFont" c-string int) path size)))
       (unless p

@@ -12,11 +12,10 @@
 (module (downstroke tmx)
   (load-tilemap tilemap-max-cells tilemap-max-depth load-tileset)
 
-  (import (downstroke keywords))
+  (import (downstroke keywords) (only (downstroke media-header) file-problem))
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
           (chicken string) (chicken file) srfi-4
-          (rename (only (chicken file posix) regular-file?) (regular-file? posix-regular-file?))
           (downstroke xml) (downstroke decode) (downstroke map)
           (only (downstroke util) filter append-map any list-min list-max string-concatenate take drop
                 make-hash-table hash-table-ref/default hash-table-set!
@@ -199,14 +198,8 @@
         (normalize-pathname path)
         (normalize-pathname (make-pathname (pathname-directory relative-to) path))))
 
-  ;; Why a path cannot be read as a file, or #f when it can: it must name
-  ;; a regular file. A directory, a FIFO or /dev/stdin would block the
-  ;; loader or fail in expat; a NUL byte cannot reach the system at all.
-  (define (unreadable-file path)
-    (cond ((substring-index (string #\x0) path) "has a NUL byte in its name")
-          ((not (file-exists? path)) "not found")
-          ((not (posix-regular-file? path)) "is not a regular file (a directory, device or pipe)")
-          (else #f)))
+  ;; Why a path cannot be read as a file, or #f ((downstroke media-header)).
+  (define unreadable-file file-problem)
 
   (define (regular-file? path) (not (unreadable-file path)))
 

@@ -41,4 +41,11 @@
 (let ((font (open-font font-path 10)))
   (hm-case "a 1 MB string to draw-text!"
            (lambda () (draw-text! renderer font (make-string (* 1024 1024) #\a) 0 0))))
+(define nul-path (string-append "le" (string #\x0) "vel.png"))
+(hm-case "an image path with a NUL byte" (lambda () (img-load-texture! renderer nul-path)))
+(init-audio!)
+(hm-case "a sound path with a NUL byte" (lambda () (load-sounds! `((a . ,nul-path)))))
+(shutdown-audio!)
+(hm-case "a font path with a NUL byte" (lambda () (open-font nul-path 10)))
+(hm-case "a font that is a device" (lambda () (open-font "/dev/zero" 10)))
 (delete-directory hm-dir #t)
