@@ -1,9 +1,9 @@
 ;;; The benchmark scenes of bench-spec.md (S1, S2, S3) and of
-;;; docs/performance.org (S4, S5), run by `make bench`.
+;;; docs/performance.org (S4, S5, S6), run by `make bench`.
 ;;; Prints a table, the checksum lines the spec asks for, and writes one CSV
 ;;; row per (scene, mode, n or speed):
 ;;;   scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct
-;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 S4 S5 steps ...]
+;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 S4 S5 S6 steps ...]
 
 (import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
         (chicken string) (chicken sort) (chicken gc) (chicken io) (chicken condition)
@@ -367,6 +367,34 @@
     (let ((ms (/ (median times) 60.0)))
       (report! "S5" 'swept n #f 60 ms (/ (* 1000 ms) n) #f #f))))
 
+;;; S6: n solid 16 px bodies piled on one spot, no map (docs/performance.org):
+;;; every pair overlaps, so the contract's push-apart visits all n(n-1)/2
+;;; of them, and exact positions pushed apart by halves gain a binary
+;;; digit with every push. The first 3 frames, integer positions (exact)
+;;; against flonum positions (40.0): what exactness costs in a pile.
+(define (run-s6 n kind runs)
+  (let* ((start (if (eq? kind 'exact) 40 40.0))
+         (pile (make-scene entities: (let loop ((k 0) (out '()))
+                                       (if (= k n) out
+                                           (loop (+ k 1) (cons (list (cons #:x start) (cons #:y start)
+                                                                     (cons #:width 16) (cons #:height 16)
+                                                                     (cons #:solid? #t))
+                                                               out))))))
+         (times (let repeat ((r 0) (times '()))
+                  (if (= r runs)
+                      times
+                      (let ((t0 (now)))
+                        (let frames ((f 0) (scene pile))
+                          (if (= f 3)
+                              (begin
+                                (when (= r 0)
+                                  (printf "checksum S6 ~a n=~a sum-x=~a~%" kind n
+                                          (exact->inexact (sum #:x (scene-entities scene)))))
+                                (repeat (+ r 1) (cons (- (now) t0) times)))
+                              (frames (+ f 1) (engine-pipeline scene 16)))))))))
+    (let ((ms (/ (median times) 3.0)))
+      (report! "S6" kind n #f 3 ms (/ (* 1000 ms) n) #f #f))))
+
 ;;; Command line.
 (define args (command-line-arguments))
 (define (flag-value name default)
@@ -392,7 +420,7 @@
 (define (filter-scenes args)
   (let loop ((as args) (out '()))
     (cond ((null? as) out)
-          ((member (car as) '("S1" "S2" "S3" "S4" "S5" "steps")) (loop (cdr as) (cons (car as) out)))
+          ((member (car as) '("S1" "S2" "S3" "S4" "S5" "S6" "steps")) (loop (cdr as) (cons (car as) out)))
           (else (loop (cdr as) out)))))
 
 (when (wanted? "S1")
@@ -426,3 +454,7 @@
     (printf "S4 all-pairs / overlapping-pairs: ~a~%" (fixed (/ slow fast) 2))))
 (when (wanted? "S5")
   (for-each (lambda (n) (run-s5 n runs)) (sizes (if quick? '(1000) '(1000 4000 16000)))))
+(when (wanted? "S6")
+  (for-each (lambda (kind)
+              (for-each (lambda (n) (run-s6 n kind runs)) (sizes (if quick? '(100) '(100 200 400)))))
+            '(exact inexact)))
