@@ -173,8 +173,16 @@ EOF
       (error who "color: must be (r g b [a]) of integers 0..255" c))
     (if (= (length c) 3) (append c '(255)) c))
 
-  (define (pixel v)
+  ;; A text's position, as a whole pixel; NaN, an infinity or a non-number
+  ;; is an error naming the procedure and the coordinate.
+  (define (pixel who name v)
+    (unless (and (real? v) (or (exact? v) (finite? v)))
+      (error who (sprintf "~a is ~s, not a finite number" name v)))
     (let ((f (floor v))) (if (exact? f) f (inexact->exact f))))
+
+  ;; A TrueType text that starts this far away (px) is not drawn: it
+  ;; cannot reach any view, and SDL's C ints cannot hold where it is.
+  (define far-text (expt 2 24))
 
   (define c-draw-text
     (foreign-lambda int "downstroke_draw_text" c-pointer c-pointer c-string
@@ -183,18 +191,22 @@ EOF
   (define/keywords (draw-text! renderer font string x y #!key (color '(255 255 255)))
     (let ((rp (renderer-pointer 'draw-text! renderer))
           (fp (live-font 'draw-text! font))
-          (c (color-bytes 'draw-text! color)))
+          (c (color-bytes 'draw-text! color))
+          (x (pixel 'draw-text! "x" x))
+          (y (pixel 'draw-text! "y" y)))
       (text-string 'draw-text! string)
-      (if (zero? (string-length string))
-          (values 0 0)
+      (cond
+       ((zero? (string-length string)) (values 0 0))
+       ((or (> (abs x) far-text) (> (abs y) far-text)) (text-size font string))
+       (else
           (let-location ((w int 0) (h int 0))
-            (let ((status (c-draw-text rp fp string (pixel x) (pixel y)
+            (let ((status (c-draw-text rp fp string x y
                                        (car c) (cadr c) (caddr c) (cadddr c)
                                        (location w) (location h))))
               (case status
                 ((-1) (text-error 'draw-text! (sprintf "TTF_RenderUTF8_Blended: ~a" (ttf-get-error))))
                 ((-2) (text-error 'draw-text! (sprintf "SDL: ~a" (get-error))))
-                (else (values w h))))))))
+                (else (values w h)))))))))
 
   ;;; ------------------------------------------------------------------
   ;;; Sprite fonts
@@ -254,8 +266,8 @@ EOF
            (gh (sprite-font-glyph-height sf))
            (columns (sprite-font-columns sf))
            (first (char->integer (sprite-font-first-char sf)))
-           (x0 (pixel x))
-           (y0 (pixel y)))
+           (x0 (pixel 'draw-sprite-text! "x" x))
+           (y0 (pixel 'draw-sprite-text! "y" y)))
       (receive (tw th) (texture-size tex)
         (let ((sheet-cols (min columns (quotient tw gw)))
               (sheet-rows (quotient th gh)))

@@ -1,7 +1,7 @@
 ;;; (downstroke text): TTF text and sprite fonts drawn into a software
 ;;; renderer on a surface, pixels read back. The sprite sheet is made here.
 
-(import scheme (chicken base) (chicken file) (chicken format) (chicken string)
+(import (chicken condition) scheme (chicken base) (chicken file) (chicken format) (chicken string)
         (chicken gc) srfi-4 (downstroke test) (downstroke sdl2) (downstroke text))
 (include-relative "pixels.scm")
 
@@ -176,6 +176,24 @@
     (test "sprite-text-size" '(16 8) (receive (w h) (sprite-text-size sf "ABCD\nE") (list w h)))
     (test-error "glyph-width is required" (make-sprite-font tex glyph-height: 4))
     (destroy-texture! tex)))
+
+(test-group "text: far away and bad coordinates"
+  (let ((font (open-font tx-font-path 12))
+        (lit (lambda () (let-values (((in out) (tx-count (tx-pixels) (lambda (p) (> (car p) 0)) 0 0 tx-w tx-h)))
+                          (+ in out)))))
+    (tx-clear!)
+    (draw-text! tx-renderer font "HH" 2 2)
+    (test-assert "near the view it draws" (> (lit) 20))
+    (for-each (lambda (x)
+                (tx-clear!)
+                (let-values (((w h) (draw-text! tx-renderer font "HH" x 2)))
+                  (test (sprintf "at x = ~a nothing wraps into the view, and the size is still answered" x)
+                        (list 0 #t) (list (lit) (> w 10)))))
+              (list (+ 2 (expt 2 32)) (- 2 (expt 2 32)) 1e308 (- (expt 2 63)) (expt 2 80)))
+    (test-error "NaN names the procedure and the coordinate"
+                (lambda (e) (and (substring-index "y is +nan.0, not a finite number" (error-text e)) (eq? (quote draw-text!) ((condition-property-accessor (quote exn) (quote location) #f) e))))
+                (draw-text! tx-renderer font "HH" 0 +nan.0))
+    (close-font! font)))
 
 (test-group "text: limits"
   (define (message thunk)
