@@ -81,7 +81,7 @@ $(BUILD)/downstroke.objects.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke
 $(BUILD)/downstroke.game.so:      $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.level.so:     $(BUILD)/downstroke.game.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.objects.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.repl.so:      
-$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.game.so $(BUILD)/downstroke.level.so $(BUILD)/downstroke.pipeline.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.repl.so
+$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.game.so $(BUILD)/downstroke.level.so $(BUILD)/downstroke.pipeline.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.repl.so $(BUILD)/downstroke.camera.so
 $(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.check.so
 
 # C files a module includes (its foreign-declare), found through -I.
