@@ -15,6 +15,7 @@
    game-input-config game-input-config-set! game-debug? game-debug-set! game-headless?
    game-resizable? game-fullscreen? game-fullscreen-set! game-toggle-fullscreen!
    game-mouse-position game-mouse-world-position game-org game-app
+   game-save-directory game-save! game-load
    game-preload-hook game-create-hook game-update-hook game-render-hook
    game-scene game-scene-set! game-input game-input-set!
    game-renderer game-renderer-set! game-window game-window-set!
@@ -32,7 +33,7 @@
           (chicken foreign) (chicken condition) (chicken file) (chicken pathname) (chicken port)
           (downstroke game) (downstroke level) (downstroke pipeline)
           (downstroke scene) (downstroke sdl2) (downstroke renderer) (downstroke input)
-          (downstroke repl) (downstroke camera))
+          (downstroke repl) (downstroke camera) (downstroke save))
 
   ;;; ------------------------------------------------------------------
   ;;; Input, window and pointer settings a game changes while it runs.
@@ -95,6 +96,21 @@
             (values (+ (camera-x cam) (/ x (camera-zoom cam)))
                     (+ (camera-y cam) (/ y (camera-zoom cam))))
             (values x y)))))
+
+  ;;; Save data: (downstroke save) in the directory SDL gives the game's
+  ;;; org: and app: (SDL_GetPrefPath, created when missing).
+
+  (define (game-save-directory game) (pref-path (game-org game) (game-app game)))
+
+  (define (game-save! game name value)
+    (save-data-write! (game-save-directory game) name value))
+
+  (define (game-load game name #!optional (default no-default))
+    (if (eq? default no-default)
+        (save-data-read (game-save-directory game) name)
+        (save-data-read (game-save-directory game) name default)))
+
+  (define no-default (list 'no-default))
 
   (define (default-engine-update game dt)
     (let ((scene (game-scene game)))
