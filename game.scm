@@ -146,7 +146,7 @@
                 (check-hook 'make-game "render:" render 1 "(render game)")
                 (and debug? #t) (and headless? #t) (and resizable? #t) (and fullscreen? #t)
                 (check "org:" name-string? org)
-                (check "app:" name-string? (or app title))
+                (if app (check "app:" name-string? app) (title->app title))
                 #f #f #f #f 0 (make-asset-registry) #f '() #f #f '()
                 (make-vector (* 3 profile-frames) 0)
                 (vector #f 0 0)))
@@ -154,6 +154,11 @@
   ;; How many frames the profile remembers: three times per frame (engine
   ;; update, update:, drawing), in ms, frame f at slots 3 (f mod n) ...
   (define profile-frames 60)
+
+  ;; The title as a directory name: no slash, never empty nor . or ..
+  (define (title->app title)
+    (let ((s (list->string (map (lambda (c) (if (char=? c #\/) #\- c)) (string->list title)))))
+      (if (name-string? s) s "downstroke-game")))
 
   (define (game-debug-set! game on?) (%game-debug-set! game (and on? #t)))
 

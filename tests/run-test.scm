@@ -411,3 +411,15 @@
       (test "on: the readout's first digit, a 0 (ring, hollow centre)" '(#t #t #t #t #f #f)
             (list (at 2 16) (at 4 16) (at 2 20) (at 4 20) (at 3 18) (at 1 16))))
     (test-assert "the profile has the rate" (assq 'fps (game-frame-profile (make-game))))))
+
+(test-group "game: the pointer in world pixels, through the camera"
+  (let ((g (make-game width: 64 height: 48)))
+    (game-input-set! g (input-update (make-input-state) *default-input-config* '((mouse-motion 10 6))))
+    (test "no scene: the screen position" '(10 6) (receive (x y) (game-mouse-world-position g) (list x y)))
+    (game-scene-set! g (make-sprite-scene camera: (make-camera x: 100 y: 40)))
+    (test "logical (10, 6) with the camera at (100, 40)" '(110 46)
+          (receive (x y) (game-mouse-world-position g) (list x y)))
+    (game-scene-set! g (make-sprite-scene camera: (make-camera x: 100 y: 40 zoom: 2)))
+    (test "zoom 2: half as far from the camera's corner" '(105 43)
+          (receive (x y) (game-mouse-world-position g) (list x y)))
+    (test "the screen position stays" '(10 6) (receive (x y) (game-mouse-position g) (list x y)))))

@@ -163,6 +163,9 @@
       (test-assert "the file is there" (file-exists? (string-append sv-dir "/acme/sky-jump/best.scm")))
       (test "app: defaults to the title" (string-append sv-dir "/downstroke/Sky Jump/")
             (game-save-directory (make-game title: "Sky Jump"))))
+    (test "a title with a slash still makes a game (its app name without the slash)"
+          (string-append sv-dir "/downstroke/AC-DC/")
+          (game-save-directory (make-game title: "AC/DC")))
     (test-error "an org: with a slash is refused by make-game" (lambda (e) (sv-says? e "org:"))
                 (make-game org: "a/b"))
     (if old (set-environment-variable! "XDG_DATA_HOME" old) (unset-environment-variable! "XDG_DATA_HOME"))))
