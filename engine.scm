@@ -271,7 +271,9 @@
   ;;;
   ;;; Opens SDL (unless it is already initialised, in which case it is
   ;;; left initialised at the end), then a window of (width * scale) x
-  ;;; (height * scale) titled game-title with an accelerated renderer
+  ;;; (height * scale), rounded, titled game-title (resizable when the
+  ;;; game's resizable? is set, then made fullscreen when its fullscreen?
+  ;;; is) with an accelerated renderer
   ;;; (software fallback), or, when the run is headless, no window: a
   ;;; software renderer drawing into an RGBA surface of that size
   ;;; (game-surface). The run is headless when game-run!'s headless?: says
@@ -287,13 +289,19 @@
   ;;; sees them) -> the input state (game-input), or the script's state ->
   ;;; the scene's engine update -> update: (game dt) -> camera follow; then,
   ;;; once per loop that ran a frame: render-scene! (or a black clear when
-  ;;; there is no scene), render: (game), present. dt is always frame-delay.
+  ;;; there is no scene), render: (game), the overlay's readout when the
+  ;;; game is in debug mode, the letterbox bars (when the window's shape is
+  ;;; not the game's), present. dt is always frame-delay. Each frame reads
+  ;;; the game's input configuration anew (game-input-config-set!), and a
+  ;;; pressed debug-overlay or fullscreen action, when the configuration
+  ;;; has one, toggles the overlay or fullscreen before the engine update.
   ;;; A headless run with frames: N never sleeps: it runs exactly N logical
   ;;; frames back to back, each one rendered.
   ;;;
   ;;; frames: N stops after N frames (else the loop runs until quit).
   ;;; The loop ends, before that frame's update, on a (quit) event (window
-  ;;; closed) or when the `quit` action is pressed or held.
+  ;;; closed) or when the `quit` action (if the configuration has one) is
+  ;;; pressed or held.
   ;;; input-script: a script (see (downstroke input)) drives the actions
   ;;; instead of the keyboard; the (quit) event still ends the run.
   ;;; record: #t records the per-frame actions; game-run! then returns the

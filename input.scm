@@ -1,9 +1,14 @@
 ;;; (downstroke input): actions, their configuration, and the per-frame
-;;; input state with pressed / held / released edges.
+;;; input state with pressed / held / released edges and the pointer.
 ;;;
-;;; Actions are the symbols  up down left right a b start select quit.
+;;; Actions are any symbols a configuration names. input-actions are
+;;; Downstroke 1.0's nine (up down left right a b start select quit), the
+;;; default for actions:; the default configuration also binds the
+;;; engine's debug-overlay (f3) and fullscreen (f11).
 ;;;
 ;;; A configuration maps sources to actions:
+;;;   actions: the actions declared; the configuration's actions are these
+;;;            and then each other action a binding names, once, in order.
 ;;;   keys:    alist (KEY . ACTION), KEY a key symbol of (downstroke sdl2)
 ;;;            (a..z, left, return, escape ...). Several keys may share an
 ;;;            action; the action is held while any of them is down.
@@ -11,12 +16,25 @@
 ;;;            name as a symbol (a b x y back guide start left-stick
 ;;;            right-stick left-shoulder right-shoulder dpad-up dpad-down
 ;;;            dpad-left dpad-right).
-;;;   axes:    list of (AXIS SIGN ACTION): AXIS an SDL game-controller axis
-;;;            (left-x left-y right-x right-y trigger-left trigger-right),
-;;;            SIGN + or -; the action is held while the axis value is past
-;;;            the dead zone on that side.
+;;;   mouse:   alist (BUTTON . ACTION), BUTTON one of mouse-buttons.
+;;;   axes:    list of (AXIS SIGN ACTION [THRESHOLD]): AXIS an SDL
+;;;            game-controller axis (left-x left-y right-x right-y
+;;;            trigger-left trigger-right), SIGN + or -; the action is held
+;;;            while the axis value is past the threshold (default: the
+;;;            dead zone) on that side.
 ;;;   dead-zone: axis magnitude (of SDL's -32768..32767) below which an
 ;;;            axis counts as centred.
+;;; A name it does not know, or an action that is not a symbol, is an error
+;;; naming it. Asking a state about an action its configuration lacks
+;;; (input-held? / input-pressed? / input-released?) is an error naming the
+;;; action and the configuration's actions.
+;;;
+;;; Rebinding: input-pressed-sources lists the sources that went down in a
+;;; frame as (key K) (button B) (mouse M) (axis A SIGN); input-config-bind
+;;; makes a configuration with one of them bound; input-config->list is a
+;;; configuration as make-input-config's arguments (data, to save). A state
+;;; updated under another configuration than its own takes the held set
+;;; the new bindings give, with no edge.
 ;;;
 ;;; Events are lists: (quit), (key-down KEY REPEAT?), (key-up KEY REPEAT?),
 ;;; (other TYPE) as (downstroke sdl2)'s poll-event! returns them, plus the
@@ -24,6 +42,8 @@
 ;;;   (controller-button-down BUTTON) (controller-button-up BUTTON)
 ;;;   (controller-axis AXIS VALUE) (controller-added INDEX)
 ;;;   (controller-removed INSTANCE-ID)
+;;; and the mouse forms (mouse-motion X Y), (mouse-button-down BUTTON X Y),
+;;; (mouse-button-up BUTTON X Y), X and Y in logical pixels,
 ;;; which (input-poll-events!) also reads from SDL (it is poll-events! plus
 ;;; controller events; the game loop uses it). (input-open-controllers!)
 ;;; starts SDL's game-controller subsystem, and controllers are opened as
@@ -52,12 +72,15 @@
 ;;; while the frame runs). The actions of an entry are held from its frame
 ;;; until the next entry's frame; before the first entry nothing is held.
 ;;; An element (tap ACTION) of ACTIONS is pressed and released within that
-;;; entry's frame only (not held). (scripted-input script) returns a
+;;; entry's frame only (not held); (mouse X Y) puts the pointer there from
+;;; that frame on. (scripted-input script [config]) checks the actions
+;;; against the configuration (default *default-input-config*) and returns a
 ;;; procedure (frame previous-state) -> state.
 ;;;
 ;;; Recording. (input-record recording frame state) returns the recording
-;;; with that frame added: an entry is added only when the held set changes
-;;; or a tap (pressed and released, not held before or after) happened, and
+;;; with that frame added: an entry is added only when the held set changes,
+;;; the pointer moved or a tap (pressed and released, not held before or
+;;; after) happened, and
 ;;; (recording->script recording) turns it into a script that scripted-input
 ;;; replays frame for frame: the same held sets, the same pressed / released
 ;;; edges. (Not reproduced: a release and re-press inside one frame, which

@@ -489,8 +489,15 @@ EOF
   (define (pref-path org app)
     (unless (and (string? org) (string? app) (> (string-length app) 0))
       (error 'pref-path "org and app must be strings (app not empty)" org app))
-    (let ((p ((foreign-lambda* c-string* ((c-string org) (c-string app))
-                "C_return(SDL_GetPrefPath(org, app));")
+    (let ((p ((foreign-lambda* c-string ((c-string org) (c-string app))
+                "static char buf[4096];
+                 char *p = SDL_GetPrefPath(org, app);
+                 if (!p) C_return(NULL);
+                 if (SDL_strlcpy(buf, p, sizeof buf) >= sizeof buf) {
+                   SDL_free(p); SDL_SetError(\"the path is too long\"); C_return(NULL);
+                 }
+                 SDL_free(p);
+                 C_return(buf);")
               org app)))
       (unless p (sdl-error 'pref-path "SDL_GetPrefPath" (sprintf "org ~s, app ~s" org app)))
       p))

@@ -364,3 +364,35 @@
   (test-error "game-input-config-set! refuses what is not a configuration"
               (lambda (exn) (substring-index "not an input configuration" (error-text exn)))
               (game-input-config-set! (make-game) '((space . a)))))
+
+;; A run played with pushed key and mouse events, recorded, and replayed:
+;; the same named actions and pointer, frame by frame.
+(test-group "input: record and replay through game-run! with named actions and the mouse"
+  (define (run player . args)
+    (let* ((log '())
+           (g (make-game headless?: #t width: 32 height: 24 input-config: my-cfg
+                         update: (lambda (g dt)
+                                   (let ((in (game-input g)))
+                                     (receive (x y) (game-mouse-position g)
+                                       (set! log (cons (list (game-frame g) x y (input-held-actions in)
+                                                             (input-pressed-actions in))
+                                                       log))))
+                                   (player (game-frame g)))))
+           (result (apply game-run! g frames: 12 args)))
+      (values (reverse log) result)))
+  (define (player f)
+    (case f
+      ((0) (push-mouse-motion-event! 3 4))
+      ((1) (push-mouse-button-event! 'down 'left 5 6) (push-key-event! 'key-down 'space))
+      ((2) (push-mouse-button-event! 'up 'left 7 8))
+      ((4) (push-key-event! 'key-up 'space) (push-key-event! 'key-down 'p) (push-key-event! 'key-up 'p))
+      ((6) (push-mouse-motion-event! 20 1))
+      ((8) (push-key-event! 'key-down 'escape))))
+  (receive (live recording) (run player record: #t)
+    (receive (replayed frames) (run (lambda (f) (void)) input-script: recording)
+      (test "the live run quit at frame 9" 9 (length live))
+      (test "the recording" '((1 (mouse 3 4)) (2 jump fire (mouse 5 6)) (3 jump (mouse 7 8)) (5 (tap pause))
+                              (7 (mouse 20 1)) (9 quit))
+            recording)
+      (test "the replay: the same frames, actions and pointer" live replayed)
+      (test "and it stops where the live run did" 9 frames))))
