@@ -281,6 +281,9 @@
          (input-update (make-input-state) in-cfg
                        '((key-down q #f) (key-down q #t) (mouse-button-down middle 1 1)
                          (controller-button-down y) (controller-axis right-y -20000)))))
+  (test "unknown buttons SDL could not name are not sources" '()
+        (input-pressed-sources (input-update (make-input-state) in-cfg
+                                             '((mouse-button-down unknown 1 1) (controller-button-down unknown)))))
   (test "a key already down, an unknown key and a small axis move are not new" '()
         (let ((s (input-update (make-input-state) in-cfg '((key-down q #f)))))
           (input-pressed-sources (input-update s in-cfg '((key-down q #t) (key-down unknown #f)
