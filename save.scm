@@ -19,7 +19,9 @@
 ;;; in the same directory, is flushed to the disk (fsync) and closed, and
 ;;; only then renamed over NAME.scm (rename is atomic), after which the
 ;;; directory is synced too. A crash at any point leaves the old value or
-;;; the new one, never a mixture.
+;;; the new one, never a mixture (and perhaps a stale NAME.scm.tmp, which
+;;; the next write replaces). One writer of a name at a time: two processes
+;;; saving the same name at once share the temporary file.
 ;;;
 ;;; Reading never evaluates anything: the file (at most save-data-max-size
 ;;; bytes, else it is refused before it is read) is first scanned so that
