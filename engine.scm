@@ -535,6 +535,8 @@
          (game-surface-set! game surface)
          (game-renderer-set! game renderer)
          (game-input-set! game (make-input-state config))
+         ;; the frame rate is counted from this run's first frame
+         (let ((c (game-draw-clock game))) (vector-set! c 0 #f) (vector-set! c 1 0) (vector-set! c 2 0))
          (when repl
            (let-values (((stdin? port) (repl-options 'game-run! repl)))
              (set! served (cons game (make-repl port: port stdin?: stdin?)))
