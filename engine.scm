@@ -12,7 +12,10 @@
 (module (downstroke engine)
   (make-game game?
    game-title game-width game-height game-scale game-frame-delay
-   game-input-config game-debug? game-headless?
+   game-input-config game-input-config-set! game-debug? game-debug-set! game-headless?
+   game-resizable? game-fullscreen? game-fullscreen-set! game-toggle-fullscreen!
+   game-mouse-position game-mouse-world-position game-org game-app
+   game-save-directory game-save! game-load
    game-preload-hook game-create-hook game-update-hook game-render-hook
    game-scene game-scene-set! game-input game-input-set!
    game-renderer game-renderer-set! game-window game-window-set!
@@ -30,7 +33,84 @@
           (chicken foreign) (chicken condition) (chicken file) (chicken pathname) (chicken port)
           (downstroke game) (downstroke level) (downstroke pipeline)
           (downstroke scene) (downstroke sdl2) (downstroke renderer) (downstroke input)
-          (downstroke repl))
+          (downstroke repl) (downstroke camera) (downstroke save))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Input, window and pointer settings a game changes while it runs.
+
+  ;; Replacing the input configuration (a rebinding screen): the next
+  ;; frame's input uses it; #f means *default-input-config*.
+  (define (game-input-config-set! game config)
+    (unless (or (not config) (input-config? config))
+      (error 'game-input-config-set! "not an input configuration (make-input-config makes one)" config))
+    (%game-input-config-set! game config))
+
+  (define (current-config game)
+    (let ((c (game-input-config game)))
+      (cond ((not c) *default-input-config*)
+            ((input-config? c) c)
+            (else (error 'game-run! "input-config: not an input configuration (make-input-config makes one)" c)))))
+
+  (define (game-fullscreen? game) (game-fullscreen-flag game))
+
+  ;; Fullscreen at the desktop's resolution, the game letterboxed in it;
+  ;; before the run (or headless) it only sets what the window starts as.
+  (define (game-fullscreen-set! game on?)
+    (let ((w (game-window game)))
+      (when w
+        (cond ((and on? (not (window-fullscreen? w)))
+               (receive (ww wh) (window-size w)
+                 (set! windowed-sizes (cons (list game ww wh) (remove-game-entry game windowed-sizes))))
+               (window-fullscreen-set! w #t))
+              ((and (not on?) (window-fullscreen? w))
+               (window-fullscreen-set! w #f)
+               ;; back to the size it had (SDL does not always restore it,
+               ;; e.g. with no window manager)
+               (let ((old (assq game windowed-sizes)))
+                 (when old (window-size-set! w (cadr old) (caddr old))))))))
+    (game-fullscreen-flag-set! game (and on? #t)))
+
+  ;; (game width height) of each game's window before it went fullscreen.
+  (define windowed-sizes '())
+  (define (remove-game-entry game entries)
+    (cond ((null? entries) '())
+          ((eq? (car (car entries)) game) (cdr entries))
+          (else (cons (car entries) (remove-game-entry game (cdr entries))))))
+
+  (define (game-toggle-fullscreen! game)
+    (game-fullscreen-set! game (not (game-fullscreen? game))))
+
+  ;; The pointer in logical screen pixels (SDL maps the window's pixels
+  ;; through the scale and the letterbox), (values x y).
+  (define (game-mouse-position game)
+    (let ((in (game-input game)))
+      (if in (input-mouse-position in) (values 0 0))))
+
+  ;; The pointer in world pixels: through the scene's camera (its
+  ;; position and zoom), as the renderer draws the world.
+  (define (game-mouse-world-position game)
+    (receive (x y) (game-mouse-position game)
+      (let* ((scene (game-scene game))
+             (cam (and scene (scene-camera scene))))
+        (if cam
+            (values (+ (camera-x cam) (/ x (camera-zoom cam)))
+                    (+ (camera-y cam) (/ y (camera-zoom cam))))
+            (values x y)))))
+
+  ;;; Save data: (downstroke save) in the directory SDL gives the game's
+  ;;; org: and app: (SDL_GetPrefPath, created when missing).
+
+  (define (game-save-directory game) (pref-path (game-org game) (game-app game)))
+
+  (define (game-save! game name value)
+    (save-data-write! (game-save-directory game) name value))
+
+  (define (game-load game name #!optional (default no-default))
+    (if (eq? default no-default)
+        (save-data-read (game-save-directory game) name)
+        (save-data-read (game-save-directory game) name default)))
+
+  (define no-default (list 'no-default))
 
   (define (default-engine-update game dt)
     (let ((scene (game-scene game)))
@@ -90,7 +170,9 @@
     (vector-set! (game-profile game) (profile-slot game part) ms))
 
   ;; The mean time of each part over the frames remembered (at most the
-  ;; last 60 run): ((engine . ms) (update . ms) (render . ms) (frames . n)).
+  ;; last 60 run): ((engine . ms) (update . ms) (render . ms) (frames . n)
+  ;; (fps . rate)), rate the frames drawn per second of real time over the
+  ;; last whole second (0 in the first second).
   ;; Frames run by game-step! alone have no drawing time (0).
   (define (game-frame-profile game)
     (let* ((v (game-profile game))
@@ -101,12 +183,26 @@
             (let loop ((i 0) (sum 0))
               (if (= i n) (/ sum n) (loop (+ i 1) (+ sum (vector-ref v (+ (* 3 i) part))))))))
       (list (cons 'engine (mean 0)) (cons 'update (mean 1)) (cons 'render (mean 2))
-            (cons 'frames n))))
+            (cons 'frames n) (cons 'fps (game-fps game)))))
+
+  ;; Frames drawn per second, counted over windows of a second of real
+  ;; time: the rate of the last whole window (0 before the first ends).
+  (define (count-draw! game)
+    (let ((c (game-draw-clock game)) (now (now-ms)))
+      (cond ((not (vector-ref c 0)) (vector-set! c 0 now) (vector-set! c 1 0))
+            ((>= (- now (vector-ref c 0)) 1000)
+             (vector-set! c 2 (/ (* 1000. (vector-ref c 1)) (- now (vector-ref c 0))))
+             (vector-set! c 0 now)
+             (vector-set! c 1 0)))
+      (vector-set! c 1 (+ 1 (vector-ref c 1)))))
+
+  (define (game-fps game) (vector-ref (game-draw-clock game) 2))
 
   ;; The overlay's readout: a bar per part along the top of the view, its
   ;; length the part's share of the frame budget (the frame delay) across
   ;; half the view: green engine update, blue update:, orange drawing; a
-  ;; grey tick marks the whole budget.
+  ;; grey tick marks the whole budget. Under the bars, in white, the
+  ;; frames drawn per second and the mean time of a frame's three parts.
   (define profile-colors '((0 220 0) (60 140 255) (255 160 0)))
 
   (define (draw-profile! game renderer)
@@ -121,7 +217,52 @@
                           (inexact->exact (round (* full (/ (cdr (assq (car parts) p)) budget)))))))
             (apply render-draw-color-set! renderer (car colors))
             (when (> len 0) (render-fill-rect! renderer (make-rect 0 y len 2)))
-            (loop (cdr parts) (cdr colors) (+ y 3)))))))
+            (loop (cdr parts) (cdr colors) (+ y 3)))))
+      ;; the text is drawn in window pixels (scale 1), so that it stays
+      ;; sharp at any scale, 2 pixels a dot past a scale of 2
+      (render-draw-color-set! renderer 255 255 255)
+      (receive (sx sy) (render-scale renderer)
+        (render-scale-set! renderer 1 1)
+        (draw-readout! renderer (profile-readout (cdr (assq 'fps p))
+                                                 (+ (cdr (assq 'engine p)) (cdr (assq 'update p))
+                                                    (cdr (assq 'render p))))
+                       2 (+ 2 (inexact->exact (ceiling (* 9 sy))))
+                       (if (> (min sx sy) 2) 2 1))
+        (render-scale-set! renderer sx sy))))
+
+  ;; "60 FPS 3.2 MS": the rate rounded, the frame time to a tenth of a ms.
+  (define (profile-readout fps ms)
+    (let* ((tenths (inexact->exact (round (* 10 ms)))))
+      (sprintf "~a FPS ~a.~a MS" (inexact->exact (round fps))
+               (quotient tenths 10) (remainder tenths 10))))
+
+  ;; A 3x5 pixel font of what the readout needs, one string per row.
+  (define readout-glyphs
+    '((#\0 "###" "#.#" "#.#" "#.#" "###") (#\1 ".#." "##." ".#." ".#." "###")
+      (#\2 "###" "..#" "###" "#.." "###") (#\3 "###" "..#" ".##" "..#" "###")
+      (#\4 "#.#" "#.#" "###" "..#" "..#") (#\5 "###" "#.." "###" "..#" "###")
+      (#\6 "###" "#.." "###" "#.#" "###") (#\7 "###" "..#" ".#." ".#." ".#.")
+      (#\8 "###" "#.#" "###" "#.#" "###") (#\9 "###" "#.#" "###" "..#" "###")
+      (#\. "..." "..." "..." "..." ".#.") (#\F "###" "#.." "##." "#.." "#..")
+      (#\P "##." "#.#" "##." "#.." "#..") (#\S ".##" "#.." ".#." "..#" "##.")
+      (#\M "#.#" "###" "###" "#.#" "#.#") (#\space "..." "..." "..." "..." "...")))
+
+  ;; Draws text of those characters from (x, y), each pixel a px-sized
+  ;; square, in the current draw colour; 4 px of advance per character.
+  (define (draw-readout! renderer text x y px)
+    (let loop ((cs (string->list text)) (cx x))
+      (unless (null? cs)
+        (let ((g (assv (car cs) readout-glyphs)))
+          (when g
+            (let rows ((rs (cdr g)) (ry 0))
+              (unless (null? rs)
+                (let cols ((i 0))
+                  (when (< i 3)
+                    (when (char=? #\# (string-ref (car rs) i))
+                      (render-fill-rect! renderer (make-rect (+ cx (* i px)) (+ y (* ry px)) px px)))
+                    (cols (+ i 1))))
+                (rows (cdr rs) (+ ry 1))))))
+        (loop (cdr cs) (+ cx (* 4 px))))))
 
   ;;; ------------------------------------------------------------------
   ;;; The game shell.
@@ -130,7 +271,9 @@
   ;;;
   ;;; Opens SDL (unless it is already initialised, in which case it is
   ;;; left initialised at the end), then a window of (width * scale) x
-  ;;; (height * scale) titled game-title with an accelerated renderer
+  ;;; (height * scale), rounded, titled game-title (resizable when the
+  ;;; game's resizable? is set, then made fullscreen when its fullscreen?
+  ;;; is) with an accelerated renderer
   ;;; (software fallback), or, when the run is headless, no window: a
   ;;; software renderer drawing into an RGBA surface of that size
   ;;; (game-surface). The run is headless when game-run!'s headless?: says
@@ -146,13 +289,19 @@
   ;;; sees them) -> the input state (game-input), or the script's state ->
   ;;; the scene's engine update -> update: (game dt) -> camera follow; then,
   ;;; once per loop that ran a frame: render-scene! (or a black clear when
-  ;;; there is no scene), render: (game), present. dt is always frame-delay.
+  ;;; there is no scene), render: (game), the overlay's readout when the
+  ;;; game is in debug mode, the letterbox bars (when the window's shape is
+  ;;; not the game's), present. dt is always frame-delay. Each frame reads
+  ;;; the game's input configuration anew (game-input-config-set!), and a
+  ;;; pressed debug-overlay or fullscreen action, when the configuration
+  ;;; has one, toggles the overlay or fullscreen before the engine update.
   ;;; A headless run with frames: N never sleeps: it runs exactly N logical
   ;;; frames back to back, each one rendered.
   ;;;
   ;;; frames: N stops after N frames (else the loop runs until quit).
   ;;; The loop ends, before that frame's update, on a (quit) event (window
-  ;;; closed) or when the `quit` action is pressed or held.
+  ;;; closed) or when the `quit` action (if the configuration has one) is
+  ;;; pressed or held.
   ;;; input-script: a script (see (downstroke input)) drives the actions
   ;;; instead of the keyboard; the (quit) event still ends the run.
   ;;; record: #t records the per-frame actions; game-run! then returns the
@@ -187,6 +336,9 @@
   ;;; buttons and axes drive actions through the input config.
 
   (define max-catch-up 4)
+
+  ;; A window side: the logical size times the scale, in whole pixels.
+  (define (scaled n scale) (max 1 (inexact->exact (round (* n scale)))))
 
   (define (headless-run? game)
     (or (game-headless? game)
@@ -243,19 +395,26 @@
         (thunk)))
 
   ;; One logical frame. Returns #t when the game should quit instead.
-  (define (run-frame! game config script events rec-box #!optional repl)
-    (let* ((prev (game-input game))
-           (from-events (input-update (if script (make-input-state) prev) config events))
-           (state (if script (script (game-frame game) prev) from-events)))
+  (define (run-frame! game script events rec-box #!optional repl)
+    (let* ((config (current-config game))
+           (prev (game-input game))
+           (from-events (input-update (if script (make-input-state config) prev) config events))
+           (state (if script (script (game-frame game) prev config) from-events))
+           (action? (lambda (a) (and (input-action? state a) (input-pressed? state a)))))
       (game-input-set! game state)
+      ;; the engine's own actions, when the configuration has them
+      (when (action? 'debug-overlay) (game-debug-set! game (not (game-debug? game))))
+      (when (action? 'fullscreen) (game-toggle-fullscreen! game))
       (if (or (input-quit? from-events)
-              (input-pressed? state 'quit)
-              (input-held? state 'quit))
+              (and (input-action? state 'quit)
+                   (or (input-pressed? state 'quit) (input-held? state 'quit))))
           (begin
             ;; recorded as the quit action, so the replay stops here too
             (when rec-box
               (set-car! rec-box (input-record (car rec-box) (game-frame game)
-                                              (input-from-held prev (cons 'quit (input-held-actions state))))))
+                                              (if (input-action? state 'quit)
+                                                  (input-from-held prev (cons 'quit (input-held-actions state)))
+                                                  state))))
             #t)
           (cond ((memq game quitting-games)
                  (set! quitting-games (remove-game game quitting-games))
@@ -283,13 +442,15 @@
       (vector-set! (game-profile game)
                    (+ (* 3 (modulo (- (game-frame game) 1) (quotient (vector-length (game-profile game)) 3))) 2)
                    (- (now-ms) t0))
+      (count-draw! game)
       (when (game-debug? game) (draw-profile! game renderer))
+      (render-letterbox! renderer (game-width game) (game-height game))
       (when shot-box (set-car! shot-box (capture-pixels renderer)))
       (render-present! renderer)))
 
   ;; Returns the number of frames run.
   ;; repl: #f, or (game . repl), served once per pass of the loop.
-  (define (run-loop! game renderer config script frames fast? rec-box shot-box repl)
+  (define (run-loop! game renderer script frames fast? rec-box shot-box repl)
     (let ((fd (game-frame-delay game)))
       (define (draw! shot)
         (guarded repl "the render: hook or drawing" (lambda () (render-frame! game renderer shot))))
@@ -297,7 +458,7 @@
         (when repl (repl-poll! (cdr repl)))
         (cond ((and frames (>= done frames)) done)
               (fast?
-               (if (run-frame! game config script (input-poll-events!) rec-box repl)
+               (if (run-frame! game script (input-poll-events!) rec-box repl)
                    done
                    (begin (draw! #f)
                           (loop (+ done 1) 0 last))))
@@ -316,7 +477,7 @@
                                           (or (not frames) (>= (+ done n) frames))
                                           shot-box))
                               (loop (+ done n) acc now))
-                             ((run-frame! game config script events rec-box repl) (+ done i))
+                             ((run-frame! game script events rec-box repl) (+ done i))
                              (else (batch (+ i 1) '())))))))))))
 
   (define unset (list 'unset))
@@ -340,13 +501,13 @@
       (error 'game-run! "frames: must be a non-negative integer or #f" frames))
     (unless (or (not screenshot) (and (string? screenshot) (> (string-length screenshot) 0)))
       (error 'game-run! "screenshot: must be a file path (a string) or #f" screenshot))
-    (let* ((config (or (game-input-config game) *default-input-config*))
-           (script (and input-script (scripted-input input-script)))
+    (let* ((config (current-config game))
+           (script (and input-script (scripted-input input-script config)))
            (headless (if (eq? headless? unset) (headless-run? game) (and headless? #t)))
            (shot-box (and screenshot (not headless) (list #f)))
            (owns-sdl (not (sdl-initialized?)))
-           (w (* (game-width game) (game-scale game)))
-           (h (* (game-height game) (game-scale game)))
+           (w (scaled (game-width game) (game-scale game)))
+           (h (scaled (game-height game) (game-scale game)))
            (rec-box (and record (list (make-recording))))
            (window #f) (surface #f) (renderer #f)
            (served #f)                  ; (game . repl) while a REPL runs
@@ -362,13 +523,20 @@
          (if headless
              (begin (set! surface (create-rgba-surface! w h))
                     (set! renderer (create-software-renderer! surface)))
-             (begin (set! window (create-window! (game-title game) 'centered 'centered w h))
-                    (set! renderer (create-renderer! window))))
+             (begin (set! window (create-window! (game-title game) 'centered 'centered w h
+                                                 (if (game-resizable? game) '(shown resizable) '(shown))))
+                    (set! renderer (create-renderer! window))
+                    (game-window-set! game window)
+                    ;; made fullscreen once it exists, so that leaving
+                    ;; fullscreen gives back the window's own size
+                    (when (game-fullscreen? game) (game-fullscreen-set! game #t))))
          (render-set-logical-size! renderer (game-width game) (game-height game))
          (game-window-set! game window)
          (game-surface-set! game surface)
          (game-renderer-set! game renderer)
-         (game-input-set! game (make-input-state))
+         (game-input-set! game (make-input-state config))
+         ;; the frame rate is counted from this run's first frame
+         (let ((c (game-draw-clock game))) (vector-set! c 0 #f) (vector-set! c 1 0) (vector-set! c 2 0))
          (when repl
            (let-values (((stdin? port) (repl-options 'game-run! repl)))
              (set! served (cons game (make-repl port: port stdin?: stdin?)))
@@ -376,7 +544,7 @@
                (print "downstroke: repl on 127.0.0.1 port " (repl-port (cdr served)))
                (flush-output))))
          (game-start! game)
-         (set! ran (run-loop! game renderer config script frames
+         (set! ran (run-loop! game renderer script frames
                               (and frames headless) rec-box shot-box served))
          (when screenshot
            (save-screenshot! screenshot renderer surface (and shot-box (car shot-box)))))

@@ -6,7 +6,8 @@
 (module (downstroke game)
   (make-game game?
    game-title game-width game-height game-scale game-frame-delay
-   game-input-config game-debug? game-headless?
+   game-input-config game-debug? game-debug-set! game-headless?
+   game-resizable? game-org game-app
    game-preload-hook game-create-hook game-update-hook game-render-hook
    game-scene game-scene-set! game-input game-input-set!
    game-renderer game-renderer-set! game-window game-window-set!
@@ -15,29 +16,38 @@
    game-add-state! game-state-set! game-current-state game-states
    ;; for sibling modules only: the engine and the level loader
    game-frame-set! game-surface-set! game-recording-set! game-textures-set!
-   active-update-hook active-render-hook game-profile)
+   active-update-hook active-render-hook game-profile %game-input-config-set! game-draw-clock
+   game-fullscreen-flag game-fullscreen-flag-set!)
 
   (import (downstroke keywords))
-  (import scheme (chicken base) (chicken format) (chicken condition) (downstroke assets))
+  (import scheme (chicken base) (chicken format) (chicken condition) (chicken string)
+          (downstroke assets))
 
   (define-record-type game
     (%make-game title width height scale frame-delay input-config
                 preload create update render debug? headless?
+                resizable? fullscreen org app
                 scene input renderer window frame assets
-                surface states current-state recording textures profile)
+                surface states current-state recording textures profile draw-clock)
     game?
     (title game-title)
     (width game-width)
     (height game-height)
     (scale game-scale)
     (frame-delay game-frame-delay)
-    (input-config game-input-config)
+    (input-config game-input-config %game-input-config-set!)
     (preload game-preload-hook)
     (create game-create-hook)
     (update game-update-hook)
     (render game-render-hook)
-    (debug? game-debug?)
+    (debug? game-debug? %game-debug-set!)
     (headless? game-headless?)
+    (resizable? game-resizable?)
+    ;; wanted fullscreen (the engine applies it to the window)
+    (fullscreen game-fullscreen-flag game-fullscreen-flag-set!)
+    ;; the names SDL_GetPrefPath files the game's save data under
+    (org game-org)
+    (app game-app)
     (scene game-scene game-scene-set!)
     (input game-input game-input-set!)
     (renderer game-renderer game-renderer-set!)
@@ -50,7 +60,9 @@
     (recording game-recording game-recording-set!)
     (textures game-textures game-textures-set!)
     ;; the last frames' times (downstroke engine's game-frame-profile)
-    (profile game-profile))
+    (profile game-profile)
+    ;; frames drawn per second: #(start-ms draws-since-start last-rate)
+    (draw-clock game-draw-clock))
 
   (define (check what ok? value)
     (unless (ok? value)
@@ -58,6 +70,9 @@
     value)
 
   (define (positive-integer? v) (and (exact-integer? v) (positive? v)))
+  (define (positive-scale? v) (and (real? v) (finite? v) (positive? v) (<= v 64)))
+  (define (name-string? v) (and (string? v) (> (string-length v) 0)
+                                (not (substring-index "/" v)) (not (member v '("." "..")))))
   (define (hook? v) (or (not v) (procedure? v)))
 
   ;; How many arguments a procedure takes, as (min . max) with max #f for
@@ -107,29 +122,45 @@
                (signal e))))))
 
   ;; width x height is the logical resolution the game draws at; the window
-  ;; is `scale` times larger on each axis. input-config #f stands for the
-  ;; input module's default configuration.
+  ;; is `scale` times larger on each axis (any positive number: 1.5 makes a
+  ;; 960x720 window of a 640x480 game, rounded to whole pixels).
+  ;; input-config #f stands for the input module's default configuration.
+  ;; resizable?: the player may resize the window; fullscreen?: start
+  ;; fullscreen (at the desktop's resolution). Either way the logical
+  ;; resolution stays and is letterboxed. org: and app: name the
+  ;; directory of the game's save data (app: defaults to the title).
   (define/keywords (make-game #!key (title "Downstroke Game") (width 640) (height 480)
                      (scale 1) (frame-delay 16) (input-config #f)
                      (preload #f) (create #f) (update #f) (render #f)
-                     (debug? #f) (headless? #f))
+                     (debug? #f) (headless? #f) (resizable? #f) (fullscreen? #f)
+                     (org "downstroke") (app #f))
     (%make-game (check "title:" string? title)
                 (check "width:" positive-integer? width)
                 (check "height:" positive-integer? height)
-                (check "scale:" positive-integer? scale)
+                (check "scale:" positive-scale? scale)
                 (check "frame-delay:" positive-integer? frame-delay)
                 input-config
                 (check-hook 'make-game "preload:" preload 1 "(preload game)")
                 (check-hook 'make-game "create:" create 1 "(create game)")
                 (check-hook 'make-game "update:" update 2 "(update game dt)")
                 (check-hook 'make-game "render:" render 1 "(render game)")
-                debug? headless?
+                (and debug? #t) (and headless? #t) (and resizable? #t) (and fullscreen? #t)
+                (check "org:" name-string? org)
+                (if app (check "app:" name-string? app) (title->app title))
                 #f #f #f #f 0 (make-asset-registry) #f '() #f #f '()
-                (make-vector (* 3 profile-frames) 0)))
+                (make-vector (* 3 profile-frames) 0)
+                (vector #f 0 0)))
 
   ;; How many frames the profile remembers: three times per frame (engine
   ;; update, update:, drawing), in ms, frame f at slots 3 (f mod n) ...
   (define profile-frames 60)
+
+  ;; The title as a directory name: no slash, never empty nor . or ..
+  (define (title->app title)
+    (let ((s (list->string (map (lambda (c) (if (char=? c #\/) #\- c)) (string->list title)))))
+      (if (name-string? s) s "downstroke-game")))
+
+  (define (game-debug-set! game on?) (%game-debug-set! game (and on? #t)))
 
   ;; The game's assets live in an asset registry: (game-asset game key
   ;; [default]) is asset-ref on it, so a missing key without a default is an

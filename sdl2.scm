@@ -31,6 +31,11 @@
 ;;;   (controller-button-down BUTTON) (controller-button-up BUTTON)
 ;;;   (controller-axis AXIS VALUE) (controller-added INDEX)
 ;;;   (controller-removed INSTANCE-ID)
+;;;   (mouse-motion X Y)       (mouse-button-down BUTTON X Y)
+;;;   (mouse-button-up BUTTON X Y)
+;;;                            X, Y in the renderer's logical pixels (SDL
+;;;                            maps a window's pointer through its logical
+;;;                            size); mouse BUTTON left middle right x1 x2
 ;;;                            BUTTON and AXIS symbols of controller-buttons
 ;;;                            and controller-axes (SDL's enum order), or
 ;;;                            unknown
@@ -51,13 +56,14 @@
    make-rect rect? rect-x rect-y rect-w rect-h
    ;; windows
    create-window! destroy-window! window? window-alive? window-size
-   window-title-set!
+   window-title-set! window-size-set! window-fullscreen-set! window-fullscreen?
+   pref-path
    ;; renderers
    create-renderer! create-software-renderer! destroy-renderer! renderer?
    renderer-alive? renderer-software? renderer-output-size renderer-name
    ;; for sibling FFI modules (text, ...): the native SDL_Renderer*
    renderer-pointer
-   render-set-logical-size! render-logical-size render-scale render-scale-set!
+   render-set-logical-size! render-letterbox! render-logical-size render-scale render-scale-set!
    render-draw-color-set! render-draw-blend-mode-set!
    render-clear! render-fill-rect! render-draw-rect! render-copy!
    render-present! render-read-pixels
@@ -101,6 +107,11 @@ static int downstroke_ev_int(int what) {
   case 3: return e->caxis.axis;
   case 4: return e->caxis.value;
   case 5: return e->cdevice.which;
+  case 6: return e->motion.x;
+  case 7: return e->motion.y;
+  case 8: return e->button.button;
+  case 9: return e->button.x;
+  case 10: return e->button.y;
   }
   return 0;
 }
@@ -124,6 +135,35 @@ static int downstroke_push_quit(void) {
   e.type = SDL_QUIT;
   e.quit.timestamp = SDL_GetTicks();
   return SDL_PushEvent(&e);
+}
+
+static void downstroke_letterbox(SDL_Renderer *r, int lw, int lh) {
+  int w, h, v, off;
+  float want, real, scale;
+  SDL_Rect bars[2];
+  if (lw <= 0 || lh <= 0 || SDL_GetRendererOutputSize(r, &w, &h) < 0 || w <= 0 || h <= 0) return;
+  want = (float)lw / lh;
+  real = (float)w / h;
+  if (SDL_fabs(want - real) < 0.0001) return;
+  if (want > real) {
+    scale = (float)w / lw;
+    v = (int)SDL_floor(lh * scale);
+    off = (h - v) / 2;
+    bars[0].x = 0; bars[0].y = 0; bars[0].w = w; bars[0].h = off;
+    bars[1].x = 0; bars[1].y = off + v; bars[1].w = w; bars[1].h = h - off - v;
+  } else {
+    scale = (float)h / lh;
+    v = (int)SDL_floor(lw * scale);
+    off = (w - v) / 2;
+    bars[0].x = 0; bars[0].y = 0; bars[0].w = off; bars[0].h = h;
+    bars[1].x = off + v; bars[1].y = 0; bars[1].w = w - off - v; bars[1].h = h;
+  }
+  SDL_RenderSetScale(r, 1.0f, 1.0f);
+  SDL_RenderSetViewport(r, NULL);
+  SDL_SetRenderDrawBlendMode(r, SDL_BLENDMODE_NONE);
+  SDL_SetRenderDrawColor(r, 0, 0, 0, 255);
+  SDL_RenderFillRects(r, bars, 2);
+  SDL_RenderSetLogicalSize(r, lw, lh);
 }
 
 /* A rect argument: x < 0 in `use` means NULL (the whole target). */
@@ -425,6 +465,44 @@ EOF
          p (location wi) (location hi))
         (values wi hi))))
 
+  (define (window-size-set! w width height)
+    (unless (and (exact-integer? width) (exact-integer? height) (< 0 width 65536) (< 0 height 65536))
+      (error 'window-size-set! "the size must be two positive integers" width height))
+    ((foreign-lambda void "SDL_SetWindowSize" c-pointer int int)
+     (live-window 'window-size-set! w) width height))
+
+  ;; Fullscreen at the desktop's resolution (no video mode change); the
+  ;; renderer's logical size letterboxes the game inside it.
+  (define (window-fullscreen-set! w on?)
+    (check-status 'window-fullscreen-set! "SDL_SetWindowFullscreen"
+                  ((foreign-lambda int "SDL_SetWindowFullscreen" c-pointer unsigned-int)
+                   (live-window 'window-fullscreen-set! w)
+                   (if on? (foreign-value "SDL_WINDOW_FULLSCREEN_DESKTOP" unsigned-int) 0))))
+
+  (define (window-fullscreen? w)
+    (not (zero? (bitwise-and ((foreign-lambda unsigned-int "SDL_GetWindowFlags" c-pointer)
+                              (live-window 'window-fullscreen? w))
+                             (foreign-value "SDL_WINDOW_FULLSCREEN" unsigned-int)))))
+
+  ;; The per-user directory SDL gives an application for its files
+  ;; (SDL_GetPrefPath: on Linux $XDG_DATA_HOME/ORG/APP/, else
+  ;; ~/.local/share/ORG/APP/), created if missing; needs no init!.
+  (define (pref-path org app)
+    (unless (and (string? org) (string? app) (> (string-length app) 0))
+      (error 'pref-path "org and app must be strings (app not empty)" org app))
+    (let ((p ((foreign-lambda* c-string ((c-string org) (c-string app))
+                "static char buf[4096];
+                 char *p = SDL_GetPrefPath(org, app);
+                 if (!p) C_return(NULL);
+                 if (SDL_strlcpy(buf, p, sizeof buf) >= sizeof buf) {
+                   SDL_free(p); SDL_SetError(\"the path is too long\"); C_return(NULL);
+                 }
+                 SDL_free(p);
+                 C_return(buf);")
+              org app)))
+      (unless p (sdl-error 'pref-path "SDL_GetPrefPath" (sprintf "org ~s, app ~s" org app)))
+      p))
+
   (define (window-title-set! w title)
     ((foreign-lambda void "SDL_SetWindowTitle" c-pointer c-string)
      (live-window 'window-title-set! w) title))
@@ -489,6 +567,16 @@ EOF
                    p)))
         (unless name (sdl-error 'renderer-name "SDL_GetRendererInfo"))
         name)))
+
+  ;; Black bars around the game where the window's shape is not the
+  ;; game's (a resized or fullscreen window): SDL's logical size centres
+  ;; the game with its aspect kept (the same sums as SDL's letterbox), and
+  ;; the scene's clear has filled the whole window; the bars are drawn over
+  ;; the margins at the window's own scale, then the logical size is set
+  ;; again. Nothing is drawn when the shapes agree.
+  (define (render-letterbox! r lw lh)
+    ((foreign-lambda void "downstroke_letterbox" c-pointer int int)
+     (live-renderer 'render-letterbox! r) lw lh))
 
   (define (render-set-logical-size! r w h)
     (check-status 'render-set-logical-size! "SDL_RenderSetLogicalSize"
@@ -639,8 +727,21 @@ EOF
         (let ((buf (make-u8vector (* w h 4) 0)))
           (check-status 'render-read-pixels "SDL_RenderReadPixels"
                         ((foreign-lambda* int ((c-pointer r) (u8vector buf) (int pitch))
-                           "C_return(SDL_RenderReadPixels((SDL_Renderer*)r, NULL,
-                                                           SDL_PIXELFORMAT_RGBA32, buf, pitch));")
+                           "SDL_Renderer *rr = (SDL_Renderer*)r;
+                            int lw, lh, status; float sx, sy; SDL_Rect vp;
+                            /* SDL reads the viewport: read the whole target,
+                               letterbox bars included, then put the viewport
+                               and scale back (through the logical size when
+                               one is set, as SDL computes them) */
+                            SDL_RenderGetLogicalSize(rr, &lw, &lh);
+                            SDL_RenderGetScale(rr, &sx, &sy);
+                            SDL_RenderGetViewport(rr, &vp);
+                            SDL_RenderSetScale(rr, 1.0f, 1.0f);
+                            SDL_RenderSetViewport(rr, NULL);
+                            status = SDL_RenderReadPixels(rr, NULL, SDL_PIXELFORMAT_RGBA32, buf, pitch);
+                            if (lw > 0 && lh > 0) SDL_RenderSetLogicalSize(rr, lw, lh);
+                            else { SDL_RenderSetViewport(rr, &vp); SDL_RenderSetScale(rr, sx, sy); }
+                            C_return(status);")
                          p buf (* w 4)))
           (values buf w h)))))
 
@@ -898,6 +999,10 @@ EOF
   (define type-caxis (foreign-value "SDL_CONTROLLERAXISMOTION" int))
   (define type-cadded (foreign-value "SDL_CONTROLLERDEVICEADDED" int))
   (define type-cremoved (foreign-value "SDL_CONTROLLERDEVICEREMOVED" int))
+  (define type-mmotion (foreign-value "SDL_MOUSEMOTION" int))
+  (define type-mbutton-down (foreign-value "SDL_MOUSEBUTTONDOWN" int))
+  (define type-mbutton-up (foreign-value "SDL_MOUSEBUTTONUP" int))
+  (define mouse-button-names '(left middle right x1 x2))
 
   ;; The next event as a list (see the head of this file), or #f.
   (define (poll-event!)
@@ -915,6 +1020,13 @@ EOF
              (list 'controller-axis (nth-or-unknown controller-axes (ev-int 3)) (ev-int 4)))
             ((= type type-cadded) (list 'controller-added (ev-int 5)))
             ((= type type-cremoved) (list 'controller-removed (ev-int 5)))
+            ((= type type-mmotion) (list 'mouse-motion (ev-int 6) (ev-int 7)))
+            ((= type type-mbutton-down)
+             (list 'mouse-button-down (nth-or-unknown mouse-button-names (- (ev-int 8) 1))
+                   (ev-int 9) (ev-int 10)))
+            ((= type type-mbutton-up)
+             (list 'mouse-button-up (nth-or-unknown mouse-button-names (- (ev-int 8) 1))
+                   (ev-int 9) (ev-int 10)))
             (else (list 'other type)))))
 
   ;; Every pending event, oldest first.

@@ -24,9 +24,17 @@
         (map (lambda (k) (cdr (assq k (input-config-keys in-cfg)))) '(j z k x return escape)))
   (test-assert "controller buttons are data" (assq 'dpad-left (input-config-buttons in-cfg)))
   (test-assert "a dead zone" (> (input-config-dead-zone in-cfg) 0))
-  (test-error "an unknown action is refused"
-              (lambda (exn) (substring-index "jump" (error-text exn)))
-              (make-input-config keys: '((space . jump))))
+  (test "a new action named by a binding joins the actions, after the declared ones"
+        '(up down left right a b start select quit jump debug-overlay fullscreen)
+        (input-config-actions (make-input-config keys: (cons '(space . jump) (input-config-keys in-cfg)))))
+  (test "the default configuration's actions: 1.0's nine and the engine's two toggles"
+        '(up down left right a b start select quit debug-overlay fullscreen)
+        (input-config-actions in-cfg))
+  (test "f3 and f11 toggle the overlay and fullscreen" '(debug-overlay fullscreen)
+        (map (lambda (k) (cdr (assq k (input-config-keys in-cfg)))) '(f3 f11)))
+  (test-error "an action that is not a symbol is refused, named with its binding"
+              (lambda (exn) (substring-index "\"jump\" in the binding (space . \"jump\")" (error-text exn)))
+              (make-input-config keys: '((space . "jump"))))
   (test-error "a misspelt key is refused, named"
               (lambda (exn) (substring-index "unknown key spacebar" (error-text exn)))
               (make-input-config keys: '((spacebar . a))))
@@ -200,3 +208,194 @@
   (test-error "an unknown axis is named"
               (lambda (exn) (substring-index "wheel" (error-text exn)))
               (push-controller-axis-event! 'wheel 0)))
+
+;;; Actions a game names, mouse, axes with thresholds, rebinding.
+
+(define my-cfg
+  (make-input-config actions: '(jump fire pause)
+                     keys: '((space . jump) (lctrl . fire) (p . pause) (escape . quit))
+                     buttons: '((a . jump) (x . fire))
+                     mouse: '((left . fire) (right . jump))
+                     axes: '((trigger-right + fire 20000) (left-x - walk-left) (left-x + walk-right))))
+
+(define (my-run frames #!optional (cfg my-cfg))
+  (let loop ((s (make-input-state cfg)) (fs frames))
+    (if (null? fs) s (loop (input-update s cfg (car fs)) (cdr fs)))))
+
+(test-group "input: actions a game names"
+  (test "the actions: declared, then those the bindings add" '(jump fire pause quit walk-left walk-right)
+        (input-config-actions my-cfg))
+  (test "a key holds a named action" '(#t #t #f) (in-edges (my-run '(((key-down space #f)))) 'jump))
+  (test "a controller button and a key share one" '(#f #t #f)
+        (in-edges (my-run '(((key-down space #f)) ((controller-button-down a)) ((key-up space #f)))) 'jump))
+  (test-error "asking for an action the configuration lacks is an error naming it and the actions"
+              (lambda (exn) (and (substring-index "unknown action left" (error-text exn))
+                                 (substring-index "(jump fire pause quit walk-left walk-right)" (error-text exn))))
+              (input-held? (my-run '(())) 'left))
+  (test-error "... for input-pressed? too" (lambda (exn) (substring-index "unknown action jmup" (error-text exn)))
+              (input-pressed? (my-run '(())) 'jmup))
+  (test-error "... and input-released?" (lambda (exn) (substring-index "unknown action jmup" (error-text exn)))
+              (input-released? (my-run '(())) 'jmup))
+  (test-error "the default configuration names its eleven actions"
+              (lambda (exn) (substring-index "(up down left right a b start select quit debug-overlay fullscreen)"
+                                             (error-text exn)))
+              (input-held? (make-input-state) 'jump))
+  (test "input-action? asks without an error" '(#t #f) (list (input-action? (make-input-state my-cfg) 'fire)
+                                                            (input-action? (make-input-state my-cfg) 'left)))
+  (test-error "an unknown key name in a configuration is named"
+              (lambda (exn) (substring-index "unknown key spce" (error-text exn)))
+              (make-input-config keys: '((space . jump) (spce . fire))))
+  (test-error "an unknown mouse button is named"
+              (lambda (exn) (substring-index "unknown mouse wheel" (error-text exn)))
+              (make-input-config mouse: '((wheel . fire))))
+  (test-error "a bad axis threshold is refused, naming the binding"
+              (lambda (exn) (substring-index "(left-x + right 40000)" (error-text exn)))
+              (make-input-config axes: '((left-x + right 40000)))))
+
+(test-group "input: mouse"
+  (let ((s (my-run '(((mouse-motion 10 20))
+                     ((mouse-button-down left 30 40))
+                     ((mouse-motion 31 41) (mouse-button-up left 32 42) (mouse-button-down right 33 43))))))
+    (test "the last position of the frame, in logical pixels" '(33 43)
+          (receive (x y) (input-mouse-position s) (list x y)))
+    (test "the left button (fire) released, the right (jump) pressed" '((#f #f #t) (#t #t #f))
+          (list (in-edges s 'fire) (in-edges s 'jump))))
+  (test "the pointer starts at (0, 0)" '(0 0)
+        (list (input-mouse-x (make-input-state)) (input-mouse-y (make-input-state))))
+  (test "motion alone is no edge" '(() ())
+        (let ((s (my-run '(((mouse-motion 5 5)) ((mouse-motion 6 6))))))
+          (list (input-pressed-actions s) (input-held-actions s)))))
+
+(test-group "input: axes with a threshold"
+  (test "a trigger below its own threshold holds nothing" '()
+        (input-held-actions (my-run '(((controller-axis trigger-right 15000))))))
+  (test "past it, fire" '(fire) (input-held-actions (my-run '(((controller-axis trigger-right 25000))))))
+  (test "a binding without a threshold uses the dead zone (8000)" '(() (walk-left))
+        (list (input-held-actions (my-run '(((controller-axis left-x -7000)))))
+              (input-held-actions (my-run '(((controller-axis left-x -9000))))))))
+
+(test-group "input: waiting for the next source (rebinding)"
+  (test "the sources pressed in a frame, oldest first, in binding form"
+        '((key q) (mouse middle) (button y) (axis right-y -))
+        (input-pressed-sources
+         (input-update (make-input-state) in-cfg
+                       '((key-down q #f) (key-down q #t) (mouse-button-down middle 1 1)
+                         (controller-button-down y) (controller-axis right-y -20000)))))
+  (test "unknown buttons SDL could not name are not sources" '()
+        (input-pressed-sources (input-update (make-input-state) in-cfg
+                                             '((mouse-button-down unknown 1 1) (controller-button-down unknown)))))
+  (test "a key already down, an unknown key and a small axis move are not new" '()
+        (let ((s (input-update (make-input-state) in-cfg '((key-down q #f)))))
+          (input-pressed-sources (input-update s in-cfg '((key-down q #t) (key-down unknown #f)
+                                                            (controller-axis left-x 3000))))))
+  (let* ((c (input-config-bind my-cfg 'jump '(key w)))
+         (c2 (input-config-bind my-cfg 'jump '(key w) replace?: #f))
+         (c3 (input-config-bind my-cfg 'dash '(key lctrl))))
+    (test "bind: the new key holds the action, its old keys do not" '((w . jump) #f)
+          (list (assq 'w (input-config-keys c)) (assq 'space (input-config-keys c))))
+    (test "bind: other kinds of source keep the action" '(a . jump) (assq 'a (input-config-buttons c)))
+    (test "bind with replace?: #f keeps the old keys" '((space . jump) (w . jump))
+          (list (assq 'space (input-config-keys c2)) (assq 'w (input-config-keys c2))))
+    (test "bind: a key taken from another action leaves it; a new action joins" '((lctrl . dash) dash)
+          (list (assq 'lctrl (input-config-keys c3)) (car (reverse (input-config-actions c3)))))
+    (test "bind an axis side" '(right-y + fire)
+          (car (reverse (input-config-axes (input-config-bind my-cfg 'fire '(axis right-y +)))))))
+  (test-error "bind: an unknown source is named"
+              (lambda (exn) (substring-index "(key spacebar)" (error-text exn)))
+              (input-config-bind my-cfg 'jump '(key spacebar)))
+  (test "a configuration as data makes the same configuration"
+        (input-config->list my-cfg)
+        (input-config->list (apply make-input-config (input-config->list my-cfg))))
+  (let* ((s (input-update (make-input-state in-cfg) in-cfg '((key-down space #f))))
+         (c (input-config-bind in-cfg 'a '(key space)))
+         (s2 (input-update s c '())))
+    (test "a configuration replaced while a key is down: held at once, with no edge" '(#f #t #f)
+          (in-edges s2 'a))))
+
+(test-group "input: scripts and recordings with named actions and the mouse"
+  (let* ((frames '(((key-down space #f) (mouse-motion 4 5)) ()
+                   ((mouse-motion 7 8) (mouse-button-down left 7 8))
+                   ((mouse-button-up left 7 8) (key-up space #f)) ((mouse-motion 1 2))))
+         (live (let loop ((s (make-input-state my-cfg)) (fs frames) (out '()))
+                 (if (null? fs) (reverse out)
+                     (let ((n (input-update s my-cfg (car fs)))) (loop n (cdr fs) (cons n out))))))
+         (rec (let loop ((f 0) (ss live) (r (make-recording)))
+                (if (null? ss) r (loop (+ f 1) (cdr ss) (input-record r f (car ss))))))
+         (script (recording->script rec))
+         (proc (scripted-input script my-cfg))
+         (replay (let loop ((f 0) (s (make-input-state my-cfg)) (out '()))
+                   (if (= f (length frames)) (reverse out)
+                       (let ((n (proc f s))) (loop (+ f 1) n (cons n out))))))
+         (view (lambda (ss) (map (lambda (s) (list (input-held-actions s) (input-pressed-actions s)
+                                                   (input-released-actions s)
+                                                   (input-mouse-x s) (input-mouse-y s)))
+                                 ss))))
+    (test "the recording" '((0 jump (mouse 4 5)) (2 jump fire (mouse 7 8)) (3) (4 (mouse 1 2))) script)
+    (test "replayed: the same actions and pointer frame by frame" (view live) (view replay)))
+  (test-error "a script's unknown action is named, with the configuration's actions"
+              (lambda (exn) (substring-index "unknown action left" (error-text exn)))
+              (scripted-input '((0 left)) my-cfg)))
+
+;; Real SDL mouse events (headless: their coordinates are logical pixels)
+;; and a configuration replaced mid-run, through game-run!.
+(test-group "input: mouse events and rebinding through game-run!"
+  (let* ((log '())
+         (g (make-game
+             headless?: #t width: 32 height: 24 input-config: my-cfg
+             update: (lambda (g dt)
+                       (let ((in (game-input g)) (f (game-frame g)))
+                         (set! log (cons (list f (input-mouse-x in) (input-mouse-y in)
+                                               (input-held-actions in) (input-pressed-sources in))
+                                         log))
+                         (case f
+                           ((0) (push-mouse-motion-event! 10 12))
+                           ((1) (push-mouse-button-event! 'down 'left 11 13))
+                           ((2) (push-mouse-button-event! 'up 'left 11 13) (push-key-event! 'key-down 'q))
+                           ;; a rebinding screen: the key pressed becomes fire's
+                           ((3) (let ((src (input-pressed-sources in)))
+                                  (game-input-config-set! g (input-config-bind (game-input-config g) 'fire (car src)))))
+                           ((4) (push-key-event! 'key-up 'q))
+                           ((5) (push-key-event! 'key-down 'q))))))))
+    (game-run! g frames: 7)
+    (test "per frame: pointer, held actions, sources pressed"
+          '((0 0 0 () ()) (1 10 12 () ()) (2 11 13 (fire) ((mouse left))) (3 11 13 () ((key q)))
+            (4 11 13 (fire) ()) (5 11 13 () ()) (6 11 13 (fire) ((key q))))
+          (reverse log)))
+  (test-error "an unknown mouse button is named"
+              (lambda (exn) (substring-index "wheel" (error-text exn)))
+              (push-mouse-button-event! 'down 'wheel 0 0))
+  (test-error "game-input-config-set! refuses what is not a configuration"
+              (lambda (exn) (substring-index "not an input configuration" (error-text exn)))
+              (game-input-config-set! (make-game) '((space . a)))))
+
+;; A run played with pushed key and mouse events, recorded, and replayed:
+;; the same named actions and pointer, frame by frame.
+(test-group "input: record and replay through game-run! with named actions and the mouse"
+  (define (run player . args)
+    (let* ((log '())
+           (g (make-game headless?: #t width: 32 height: 24 input-config: my-cfg
+                         update: (lambda (g dt)
+                                   (let ((in (game-input g)))
+                                     (receive (x y) (game-mouse-position g)
+                                       (set! log (cons (list (game-frame g) x y (input-held-actions in)
+                                                             (input-pressed-actions in))
+                                                       log))))
+                                   (player (game-frame g)))))
+           (result (apply game-run! g frames: 12 args)))
+      (values (reverse log) result)))
+  (define (player f)
+    (case f
+      ((0) (push-mouse-motion-event! 3 4))
+      ((1) (push-mouse-button-event! 'down 'left 5 6) (push-key-event! 'key-down 'space))
+      ((2) (push-mouse-button-event! 'up 'left 7 8))
+      ((4) (push-key-event! 'key-up 'space) (push-key-event! 'key-down 'p) (push-key-event! 'key-up 'p))
+      ((6) (push-mouse-motion-event! 20 1))
+      ((8) (push-key-event! 'key-down 'escape))))
+  (receive (live recording) (run player record: #t)
+    (receive (replayed frames) (run (lambda (f) (void)) input-script: recording)
+      (test "the live run quit at frame 9" 9 (length live))
+      (test "the recording" '((1 (mouse 3 4)) (2 jump fire (mouse 5 6)) (3 jump (mouse 7 8)) (5 (tap pause))
+                              (7 (mouse 20 1)) (9 quit))
+            recording)
+      (test "the replay: the same frames, actions and pointer" live replayed)
+      (test "and it stops where the live run did" 9 frames))))

@@ -372,7 +372,7 @@
     (game-run! g frames: 100)
     (test "at most the last 60 frames are kept" 60 (cdr (assq 'frames (game-frame-profile g)))))
   (test "a game that has run no frame has a profile of zeros"
-        '((engine . 0) (update . 0) (render . 0) (frames . 0))
+        '((engine . 0) (update . 0) (render . 0) (frames . 0) (fps . 0))
         (game-frame-profile (run-game)))
   ;; the overlay's bars: blue for update:, which takes a whole frame budget
   ;; here, so its bar spans half the view (16 of 32 px) at y 3
@@ -383,3 +383,43 @@
           '((60 140 255 255) (60 140 255 255))
           (list (png-pixel shot 0 3) (png-pixel shot 15 3)))
     (delete-file* shot)))
+
+;; The debug overlay toggled by its action (f3 by default) while the game
+;; runs, with its readout of frames per second and frame time; a scale of
+;; 1.5 makes a 96x72 output.
+(test-group "game-run!: the overlay toggled at run time; a non-integer scale"
+  (let* ((dir (create-temporary-directory))
+         (log '())
+         (run (lambda (frames shot)
+                (let ((g (make-game headless?: #t width: 64 height: 48 scale: 1.5
+                                    update: (lambda (g dt)
+                                              (set! log (cons (game-debug? g) log))
+                                              (case (game-frame g)
+                                                ((0 3) (push-key-event! 'key-down 'f3))
+                                                ((1 4) (push-key-event! 'key-up 'f3)))))))
+                  (set! log '())
+                  (game-run! g frames: frames screenshot: shot)
+                  (reverse log))))
+         (white? (lambda (p) (equal? (take p 3) '(255 255 255)))))
+    (test "f3 turns the overlay on, and again off" '(#f #t #t #t #f #f) (run 6 (string-append dir "/off.png")))
+    (test "a 64x48 game at scale 1.5 is 96x72" '(96 72) (png-size (string-append dir "/off.png")))
+    (test "off: no readout" 0 (png-count (string-append dir "/off.png") white?))
+    (run 3 (string-append dir "/on.png"))
+    ;; the first glyph is the rate, 0 in the first second: a 3x5 "0" in
+    ;; window pixels from (2, 16), under the bars (9 logical rows, 13.5)
+    (let ((at (lambda (x y) (white? (png-pixel (string-append dir "/on.png") x y)))))
+      (test "on: the readout's first digit, a 0 (ring, hollow centre)" '(#t #t #t #t #f #f)
+            (list (at 2 16) (at 4 16) (at 2 20) (at 4 20) (at 3 18) (at 1 16))))
+    (test-assert "the profile has the rate" (assq 'fps (game-frame-profile (make-game))))))
+
+(test-group "game: the pointer in world pixels, through the camera"
+  (let ((g (make-game width: 64 height: 48)))
+    (game-input-set! g (input-update (make-input-state) *default-input-config* '((mouse-motion 10 6))))
+    (test "no scene: the screen position" '(10 6) (receive (x y) (game-mouse-world-position g) (list x y)))
+    (game-scene-set! g (make-sprite-scene camera: (make-camera x: 100 y: 40)))
+    (test "logical (10, 6) with the camera at (100, 40)" '(110 46)
+          (receive (x y) (game-mouse-world-position g) (list x y)))
+    (game-scene-set! g (make-sprite-scene camera: (make-camera x: 100 y: 40 zoom: 2)))
+    (test "zoom 2: half as far from the camera's corner" '(105 43)
+          (receive (x y) (game-mouse-world-position g) (list x y)))
+    (test "the screen position stays" '(10 6) (receive (x y) (game-mouse-position g) (list x y)))))

@@ -213,6 +213,41 @@
   (test-error "an unknown key symbol" (push-key-event! 'key-down 'no-such-key))
   (test-error "an unknown event type" (push-key-event! 'key-sideways 'a)))
 
+(test-group "sdl2: letterbox bars over a target of another shape"
+  ;; a 4x2 logical size on a 10x8 target: 2.5 times larger, 10x5, rows
+  ;; 1..5 (SDL centres it: (8 - 5) / 2 = 1), bars above (row 0) and
+  ;; below (rows 6, 7)
+  (let* ((s (create-rgba-surface! 10 8))
+         (r (create-software-renderer! s)))
+    (render-set-logical-size! r 4 2)
+    (render-draw-color-set! r 0 200 0)
+    (render-clear! r)
+    (render-draw-color-set! r 200 0 0)
+    (render-fill-rect! r (make-rect 0 0 1 1))
+    (render-letterbox! r 4 2)
+    (let ((f (sdl-frame r)))
+      (test "the frame is the whole target" '(10 8) (cdr f))
+      (test "bars: black above and below" '((0 0 0 255) (0 0 0 255) (0 0 0 255))
+            (list (sdl-pixel f 0 0) (sdl-pixel f 9 6) (sdl-pixel f 5 7)))
+      (test "the game between: its red logical pixel (0, 0) at target (0, 1), green beside"
+            '((200 0 0 255) (0 200 0 255) (0 200 0 255))
+            (list (sdl-pixel f 0 1) (sdl-pixel f 9 5) (sdl-pixel f 5 3))))
+    (test "the logical size is kept" '(4 2) (receive (w h) (render-logical-size r) (list w h)))
+    (render-draw-color-set! r 0 0 255)
+    (render-fill-rect! r (make-rect 3 1 1 1))
+    (test "and drawing afterwards is still through it: logical (3, 1) at target x 7.., y 3.."
+          '((0 0 255 255) (0 0 255 255) (0 200 0 255) (0 200 0 255))
+          (let ((f (sdl-frame r))) (list (sdl-pixel f 8 4) (sdl-pixel f 7 3) (sdl-pixel f 6 4) (sdl-pixel f 8 2))))
+    (free-surface! s))
+  (let* ((s (create-rgba-surface! 8 4))
+         (r (create-software-renderer! s)))
+    (render-set-logical-size! r 4 2)
+    (render-draw-color-set! r 0 200 0)
+    (render-clear! r)
+    (render-letterbox! r 4 2)
+    (test "the same shape: no bars" '(0 200 0 255) (sdl-pixel (sdl-frame r) 0 0))
+    (free-surface! s)))
+
 (test-group "sdl2: time"
   (let ((t0 (get-ticks)))
     (delay! 20)

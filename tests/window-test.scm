@@ -95,4 +95,97 @@
                   (list (at 32 16) (at 47 31) (at 48 31)))
             (test "the background elsewhere" '(0 255 0) (at 100 80))))))))
 
+
+;;; Window modes: a resizable window letterboxed, the pointer mapped to
+;;; logical pixels through scale and bars, fullscreen from make-game and
+;;; toggled by the fullscreen action (f11) and by procedure.
+(define modes-script "
+(import scheme (chicken base) (chicken format) (chicken process-context)
+        (downstroke sdl2) (downstroke scene) (downstroke input) (downstroke engine))
+(define args (command-line-arguments))
+(define mode (string->symbol (car args)))
+(define (say g what) (receive (w h) (window-size (game-window g))
+                       (printf \"~a ~ax~a fullscreen ~a~%\" what w h (window-fullscreen? (game-window g)))))
+(define game
+  (make-game
+   title: \"downstroke window modes\" width: 64 height: (if (eq? mode 'resize) 48 32) scale: 1.5
+   resizable?: (eq? mode 'resize) fullscreen?: (eq? mode 'fullscreen)
+   create: (lambda (g)
+             (say g \"start\")
+             (game-scene-set! g (make-sprite-scene background: '(0 255 0)
+                                  entities: (list (list #:x 0 #:y 0 #:width 8 #:height 8 #:color '(255 255 0))
+                                                  (list #:x 56 #:y 24 #:width 8 #:height 8 #:color '(255 0 0))))))
+   update: (lambda (g dt)
+             (let ((f (game-frame g)))
+               (case mode
+                 ((resize)
+                  (case f
+                    ((1) (window-size-set! (game-window g) 200 72))
+                    ((5) (push-mouse-motion-event! 82 15))
+                    ((6) (receive (x y) (game-mouse-position g) (printf \"mouse ~a ~a~%\" x y))
+                         (push-mouse-motion-event! 147 71))
+                    ((7) (receive (x y) (game-mouse-position g) (printf \"mouse ~a ~a~%\" x y))
+                         (say g \"resized\"))))
+                 ((toggle)
+                  (case f
+                    ((2) (push-key-event! 'key-down 'f11))
+                    ((3) (push-key-event! 'key-up 'f11))
+                    ((8) (say g \"f11\") (game-toggle-fullscreen! g))
+                    ((14) (say g \"procedure\")))))))))
+(printf \"frames ~a~%\" (game-run! game headless?: #f frames: 16 screenshot: (cadr args)))
+")
+
+(define (modes-command mode)
+  (sprintf "env -u SDL_VIDEODRIVER SDL_AUDIODRIVER=dummy CHICKEN_REPOSITORY_PATH=~a timeout 120 xvfb-run -a -s '-screen 0 640x480x24' csi -q -s ~a ~a ~a 2>&1"
+           (qs (string-intersperse
+                (map (lambda (p) (if (absolute-pathname? p) p
+                                     (make-absolute-pathname (current-directory) p)))
+                     (repository-path))
+                ":"))
+           (qs (win-path "modes.scm")) mode (qs (win-path (string-append mode ".png")))))
+
+(test-group "window: resizable, letterboxed, fullscreen (a real X11 window under xvfb-run)"
+  (when win-xvfb-run?
+    (with-output-to-file (win-path "modes.scm") (lambda () (display modes-script)))
+    (receive (out status) (win-run (modes-command "resize"))
+      (let ((has? (lambda (line) (and (substring-index line out) #t)))
+            (shot (win-path "resize.png")))
+        (test "the resizing game exits cleanly" 0 status)
+        (unless (zero? status) (printf "     child output:~%~a~%" out))
+        (test-assert "a non-integer scale: 64x48 at 1.5 is a 96x72 window" (has? "start 96x72 fullscreen #f\n"))
+        (test-assert "the window resized to 200x72" (has? "resized 200x72 fullscreen #f\n"))
+        ;; 200x72 shows the 64x48 game 1.5 times larger (96x72), centred:
+        ;; window x 52..147 is the game, x 0..51 and 148..199 the bars
+        (test-assert "the pointer at window (82, 15) is logical (20, 10)" (has? "mouse 20 10\n"))
+        (test-assert "the pointer at window (147, 71) is logical (63, 47)" (has? "mouse 63 47\n"))
+        (when (file-exists? shot)
+          (let ((at (lambda (x y) (take (png-pixel shot x y) 3))))
+            (test "the screenshot is the resized window" '(200 72) (png-size shot))
+            (test "black bars left and right of the game"
+                  '((0 0 0) (0 0 0) (0 0 0) (0 0 0))
+                  (list (at 0 0) (at 51 71) (at 148 0) (at 199 71)))
+            (test "the game between them: the yellow square at logical (0, 0) is window 52..63"
+                  '((255 255 0) (255 255 0) (0 255 0))
+                  (list (at 52 0) (at 63 11) (at 64 12)))
+            (test "the red square at logical (56, 24): window (136..147, 36..47)"
+                  '((255 0 0) (255 0 0) (0 255 0))
+                  (list (at 136 36) (at 147 47) (at 135 36)))))))
+    (receive (out status) (win-run (modes-command "fullscreen"))
+      (let ((has? (lambda (line) (and (substring-index line out) #t)))
+            (shot (win-path "fullscreen.png")))
+        (test "the fullscreen game exits cleanly" 0 status)
+        (unless (zero? status) (printf "     child output:~%~a~%" out))
+        (test-assert "fullscreen?: #t: SDL gives the window the 640x480 screen" (has? "start 640x480 fullscreen #t\n"))))
+    ;; (Xvfb runs no window manager, which a fullscreen X11 window needs to
+    ;; be laid over the screen, so the fullscreen pixels are not checked
+    ;; here; the letterbox they would show is the resized window's above.)
+    (receive (out status) (win-run (modes-command "toggle"))
+      (let ((has? (lambda (line) (and (substring-index line out) #t))))
+        (test "the toggling game exits cleanly" 0 status)
+        (unless (zero? status) (printf "     child output:~%~a~%" out))
+        (test-assert "windowed at first" (has? "start 96x48 fullscreen #f\n"))
+        (test-assert "f11 (the fullscreen action) made it fullscreen" (has? "f11 640x480 fullscreen #t\n"))
+        (test-assert "game-toggle-fullscreen! made it a window again, of its own size"
+                     (has? "procedure 96x48 fullscreen #f\n"))))))
+
 (delete-directory win-dir #t)
