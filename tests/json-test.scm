@@ -3,6 +3,7 @@
 ;;; refused with its line and column.
 
 (import scheme (chicken base) (chicken string) (chicken format) (chicken condition)
+        (only (downstroke util) iota)
         (downstroke test) (downstroke json))
 
 ;; A JSON value as plain lists: objects as (obj (key . value) ...), arrays
@@ -37,7 +38,15 @@
         (json-parse-string "\"\\u00e9\\u20AC\\ud83d\\ude00\""))
   (test "UTF-8 in the text passes through" "h\xc3\xa9" (json-parse-string "\"h\xc3\xa9\""))
   (test "a byte order mark is skipped" 1 (json-parse-string "\xef\xbb\xbf 1"))
-  (test "an empty array and object" '(arr (arr) (obj)) (js "[[],{}]")))
+  (test "an empty array and object" '(arr (arr) (obj)) (js "[[],{}]"))
+  ;; arrays are gathered in blocks of 1024: every length around a block edge
+  (for-each
+   (lambda (n)
+     (let ((l (iota n)))
+       (test (sprintf "an array of ~a elements, in order" n) l
+             (vector->list (json-parse-string
+                            (string-append "[" (string-intersperse (map number->string l) ",") "]"))))))
+   '(1 1023 1024 1025 2047 2048 2049 5000)))
 
 (test-group "json: malformed text names the line and column"
   (for-each
