@@ -1,6 +1,6 @@
 ;;; Tiled's JSON formats, checked against Tiled itself. For every map the
-;;; TMX tests load (tests/maps/*.tmx, and Tiled's example maps when
-;;; fetched), Tiled's own JSON export of it (`tiled --export-map json`,
+;;; TMX tests load (tests/maps/*.tmx, the demos' levels, and Tiled's example
+;;; maps when fetched), Tiled's own JSON export of it (`tiled --export-map json`,
 ;;; fresh when tiled runs here, else the copies committed in
 ;;; maps/tiled-json/, made by tools/export-tiled-json.sh):
 ;;;  1. says the same as our TMX loader, field by field: layers, cells and
@@ -32,6 +32,7 @@
 
 (define tj-maps
   (append (sort (glob "maps/*.tmx") string<?)
+          (sort (glob "../demo/levels/*.tmx") string<?)
           (if tj-examples?
               (sort (let walk ((dir "data/tiled-examples"))
                       (append-map (lambda (f)
@@ -44,7 +45,8 @@
               '())))
 
 (define (tj-export-of dir map)
-  (make-pathname dir (string-append (string-translate* (pathname-strip-extension map) '(("/" . "__")))
+  (make-pathname dir (string-append (string-translate* (pathname-strip-extension map)
+                                                       '(("../" . "") ("/" . "__")))
                                     ".tmj")))
 
 ;; What python says each export holds: path -> datum.
@@ -450,6 +452,8 @@
     (list "notsj.tmj" (tj-map tilesets: "[{\"firstgid\":1,\"source\":\"none.tsj\"}]") "none.tsj" "not found")
     (list '("badtsj.tmj" . "trunc.tmj") (tj-map tilesets: "[{\"firstgid\":1,\"source\":\"trunc.tmj\"}]") "trunc.tmj" "malformed JSON")
     (list "tsobj.tmj" (tj-map tilesets: "[3]") "\"tilesets[0]\" is 3" "an object")
+    (list "oldtiles.tmj" (tj-map tilesets: "[{\"firstgid\":1,\"name\":\"old\",\"tilewidth\":8,\"tileheight\":8,\"tiles\":{\"0\":{}}}]")
+          "tileset \"old\"" "\"tiles\" is an object, expected an array")
     (list "poly.tmj" (tj-map layers: (tj-objects-text "{\"id\":1,\"polygon\":[{\"x\":1}]}"))
           "object 1" "polygon[0] has no y")
     (list "polyobj.tmj" (tj-map layers: (tj-objects-text "{\"id\":1,\"polygon\":3}"))

@@ -4,10 +4,12 @@
 #   sh tools/export-tiled-json.sh [DEST]
 #
 # Runs `tiled --export-map json` (Debian's tiled package, headless through
-# QT_QPA_PLATFORM=offscreen) on tests/maps/*.tmx and, when they have been
+# QT_QPA_PLATFORM=offscreen) on tests/maps/*.tmx, the demos' levels
+# (demo/levels/*.tmx, which the demo tests play) and, when they have been
 # fetched (tools/fetch-tiled-examples.sh), on Tiled's example maps in
 # tests/data/tiled-examples. Each export is DEST/NAME.tmj, NAME the map's
-# path under tests/ with / written as __ (maps__features.tmj,
+# path under tests/ (or under the top for the demos) with / written as __
+# (maps__features.tmj, demo__levels__topdown.tmj,
 # data__tiled-examples__rpg__island.tmj); Tiled writes the paths inside
 # relative to DEST, so they still name the same files. DEST defaults to
 # tests/maps/tiled-json, the copies committed for machines without tiled;
@@ -20,9 +22,9 @@ dest=${1:-$here/tests/maps/tiled-json}
 command -v tiled >/dev/null 2>&1 || { echo "export-tiled-json: tiled is not installed" >&2; exit 1; }
 mkdir -p "$dest"
 cd "$here/tests"
-maps=$(ls maps/*.tmx; [ -f data/tiled-examples/.complete ] && find data/tiled-examples -name '*.tmx' | sort || true)
+maps=$(ls maps/*.tmx ../demo/levels/*.tmx; [ -f data/tiled-examples/.complete ] && find data/tiled-examples -name '*.tmx' | sort || true)
 for m in $maps; do
-    name=$(echo "${m%.tmx}" | sed 's|/|__|g')
+    name=$(echo "${m%.tmx}" | sed 's|^\.\./||; s|/|__|g')
     QT_QPA_PLATFORM=offscreen XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} \
         tiled --export-map json "$m" "$dest/$name.tmj" >/dev/null 2>&1 || {
         echo "export-tiled-json: tiled could not export $m" >&2; exit 1; }
