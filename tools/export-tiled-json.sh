@@ -10,7 +10,9 @@
 # tests/data/tiled-examples. Each export is DEST/NAME.tmj, NAME the map's
 # path under tests/ (or under the top for the demos) with / written as __
 # (maps__features.tmj, demo__levels__topdown.tmj,
-# data__tiled-examples__rpg__island.tmj); Tiled writes the paths inside
+# data__tiled-examples__rpg__island.tmj), and NAME.full.tmj, the export with
+# external tilesets embedded and template instances detached (Tiled's
+# --embed-tilesets --detach-templates); Tiled writes the paths inside
 # relative to DEST, so they still name the same files. DEST defaults to
 # tests/maps/tiled-json, the copies committed for machines without tiled;
 # the test writes fresh ones to tests/data/tiled-json when tiled runs.
@@ -29,4 +31,9 @@ for m in $maps; do
         tiled --export-map json "$m" "$dest/$name.tmj" >/dev/null 2>&1 || {
         echo "export-tiled-json: tiled could not export $m" >&2; exit 1; }
     [ -f "$dest/$name.tmj" ] || { echo "export-tiled-json: no export of $m" >&2; exit 1; }
+    # the same with the external tilesets and templates written out, so
+    # that they too are compared with what Tiled read
+    QT_QPA_PLATFORM=offscreen XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp} \
+        tiled --embed-tilesets --detach-templates --export-map json "$m" "$dest/$name.full.tmj" >/dev/null 2>&1 || {
+        echo "export-tiled-json: tiled could not export $m with its tilesets" >&2; exit 1; }
 done
