@@ -198,7 +198,8 @@ def tileset(base, t):
     out.append(['properties', properties(base, t)])
     out.append(['tiles', [[['id', tl['id']], ['type', tl.get('type', tl.get('class', ''))],
                            ['properties', properties(base, tl)],
-                           ['animation', [[f['tileid'], f['duration']] for f in tl.get('animation', [])]]]
+                           ['animation', [[f['tileid'], f['duration']] for f in tl.get('animation', [])]],
+                           ['shapes', [obj(base, o) for o in tl.get('objectgroup', {}).get('objects', [])]]]
                           for tl in t.get('tiles', [])]])
     return out
 
