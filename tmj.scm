@@ -71,12 +71,12 @@
   (define (reader path fail)
     ;; what: the place being read, for messages
     (define (bad what key v expected)
-      (fail path "~a: ~s is ~a~a, expected ~a" what key
+      (fail path "~a: ~s is ~a, expected ~a" what key
             (cond ((string? v) (sprintf "~s (a string)" v))
                   ((or (json-object? v) (vector? v)) (json-type-name v))
                   ((boolean? v) (if v "true" "false"))
                   (else (sprintf "~a" v)))
-            "" expected))
+            expected))
     (define (get obj key) (json-ref obj key 'null))
     (define (present? v) (not (eq? v 'null)))
     ;; Checked access to one key: the value, or #f when absent or null.
