@@ -13,7 +13,7 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util media-header keywords srfi-197 entity check camera tween animation xml decode map tmx tilemap scene broadphase physics overlap pipeline sdl2 renderer input sound text assets prefabs objects game level repl save engine
+MODULES := test util media-header keywords srfi-197 entity check camera tween animation xml decode json map tmj tmx tilemap scene broadphase physics overlap pipeline sdl2 renderer input sound text assets prefabs objects game level repl save engine
 
 # C libraries a module binds through the FFI (passed to the linker by csc).
 LINK_xml    := -L -lexpat
@@ -65,7 +65,8 @@ $(BUILD)/downstroke.decode.so: $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.map.so:       $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.media-header.so $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.tmj.so:       $(BUILD)/downstroke.json.so $(BUILD)/downstroke.util.so
+$(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.media-header.so $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.tmj.so
 $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.tmx.so $(BUILD)/downstroke.objects.so
 $(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.camera.so $(BUILD)/downstroke.check.so
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so

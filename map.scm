@@ -43,7 +43,8 @@
 ;;; - tilesets: `tileset` records, in firstgid order; per-tile data in `tile`
 ;;;   records (properties, image, animation frames, collision shapes).
 ;;; - objects: `map-object` records; shape is one of the symbols rectangle,
-;;;   ellipse, point, polygon, polyline, text, tile.
+;;;   ellipse, capsule (Tiled 1.11's <capsule/>), point, polygon, polyline, text,
+;;;   tile.
 ;;; - properties: an alist (name . value) in file order. Values: string,
 ;;;   exact integer (int), flonum (float), #t/#f (bool), and tagged lists for
 ;;;   the rest: (color R G B A) or (color) when unset, (file "resolved/path"),
@@ -396,14 +397,15 @@
         (else (values x y w h)))))
 
   ;; The tileset a gid (flags allowed) belongs to: the one with the highest
-  ;; firstgid not above it. #f for gid 0 or below every firstgid.
+  ;; firstgid not above it. #f for gid 0, below every firstgid, or past the
+  ;; last tile of that tileset (Tiled keeps such a cell; nothing is drawn
+  ;; there, though it is solid like any non-zero cell).
   (define (tilemap-tileset-for tm gid)
     (let ((g (cell-gid gid)))
       (and (> g 0)
            (let loop ((ts (tilemap-tilesets tm)) (best #f))
-             (cond ((null? ts) best)
-                   ((<= (tileset-first-gid (car ts)) g) (loop (cdr ts) (car ts)))
-                   (else best))))))
+             (cond ((and (pair? ts) (<= (tileset-first-gid (car ts)) g)) (loop (cdr ts) (car ts)))
+                   (else (and best (tileset-covers? best g) best)))))))
 
   ;; The per-tile data (a tile record) of a gid, or #f.
   (define (tilemap-tile-info tm gid)

@@ -37,7 +37,7 @@
   ;;;                the renderer draws from the scene's tileset; and
   ;;;                #:facing -1 when the tile is flipped horizontally;
   ;;;   #:rotation   degrees clockwise, when not 0 (the box is unrotated);
-  ;;;   #:shape      ellipse, point, polygon, polyline or text (rectangles
+  ;;;   #:shape      ellipse, capsule, point, polygon, polyline or text (rectangles
   ;;;                and tile objects have none); #:points for polygons and
   ;;;                polylines, ((x . y) ...) relative to #:x #:y;
   ;;;   then every custom property, its name as a keyword ("hp" -> #:hp,

@@ -4,7 +4,9 @@
 ;;;
 ;;; The loader. `(load-tilemap path)` reads a TMX file with its external
 ;;; tilesets (.tsx), templates (.tx) and checks that every image they name
-;;; exists (images are not decoded). It never crashes the process: every
+;;; exists (images are not decoded). Any of these files may be in Tiled's
+;;; JSON format instead (.tmj, .tsj, .tj, or JSON content under another
+;;; name): (downstroke tmj) turns it into the tree an XML file gives. It never crashes the process: every
 ;;; problem is raised as an error whose message starts with the file it is in
 ;;; and says what is wrong; the condition also has the kind `tmx` with the
 ;;; property `file`.
@@ -16,7 +18,7 @@
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
           (chicken string) (chicken file) srfi-4
-          (downstroke xml) (downstroke decode) (downstroke map)
+          (downstroke xml) (downstroke decode) (downstroke map) (downstroke tmj)
           (only (downstroke util) filter append-map any list-min list-max string-concatenate take drop
                 make-hash-table hash-table-ref/default hash-table-set!
                 hash-table-exists?))
@@ -123,8 +125,9 @@
   (define (attr-string node name default)
     (or (x-attr node name) default))
 
+  ;; A number from an attribute's text, or as a JSON file gave it.
   (define (parse-real s)
-    (let ((n (and (string? s) (string->number s))))
+    (let ((n (cond ((string? s) (string->number s)) ((number? s) s) (else #f))))
       (and n (real? n) (not (nan? n)) (finite? n) n)))
 
   (define (attr-number ctx node name default)
@@ -208,8 +211,14 @@
       (when why
         (tmx-error (ctx-file ctx) "~a: ~a file ~s ~a" (ctx-what ctx) what path why))))
 
-  ;; The root element of an XML file, which must be a <tag>.
+  ;; The root element of an XML file, which must be a <tag>; a JSON file's
+  ;; object turned into the same tree.
   (define (read-root ctx path tag)
+    (if (json-file? path)
+        (json-root path tag tmx-error)
+        (read-xml-root path tag)))
+
+  (define (read-xml-root path tag)
     (let ((tree (handle-exceptions exn
                     (tmx-error path "malformed XML: ~a" (condition-message exn))
                   (xml-parse-file path))))
@@ -242,7 +251,16 @@
            (value (or (x-attr p 'value) (x-text p)))
            (fail (lambda (expected)
                    (tmx-error (ctx-file ctx) "~a: value ~s is not ~a" (ctx-what ctx) value expected))))
+      ;; A typed property written without a value (or with value="")
+      ;; reads as the type's empty value: int 0, float 0.0, bool #f,
+      ;; object (object 0); string, file and color are "", (file "") and
+      ;; (color) (unset) below.
       (cond ((string=? type "string") value)
+            ((and (equal? value "") (member type '("int" "float" "bool" "object")))
+             (cond ((string=? type "int") 0)
+                   ((string=? type "float") 0.0)
+                   ((string=? type "bool") #f)
+                   (else (list 'object 0))))
             ((string=? type "int")
              (let ((n (parse-real value)))
                (if (and n (exact-integer? n)) n (fail "an integer"))))
@@ -398,7 +416,13 @@
     (tilesets state-tilesets state-tilesets-set!)
     (stack state-stack state-stack-set!))
 
+  ;; "x,y x,y ..." as TMX writes it; a JSON file's points are already pairs.
   (define (parse-points ctx s)
+    (if (pair? s)
+        s
+        (parse-points-text ctx s)))
+
+  (define (parse-points-text ctx s)
     (let ((pairs (string-split s " \t\n\r")))
       (map (lambda (p)
              (let* ((xy (string-split p "," #t))
@@ -444,7 +468,7 @@
            (cell (cond (raw-gid (if gid-of (gid-of octx raw-gid) raw-gid))
                        (else (inherit object-cell 0))))
            (shape-node (any (lambda (tag) (x-child node tag))
-                            '(ellipse point polygon polyline text)))
+                            '(ellipse point polygon polyline text capsule)))
            (shape (cond (shape-node (car shape-node))
                         (raw-gid (if (zero? (cell-gid cell)) 'rectangle 'tile))
                         (base (object-shape base))
@@ -528,8 +552,8 @@
                               ((not ts)
                                (tmx-error path "~a: gid ~a but the template has no tileset"
                                           (ctx-what octx) g))
-                              ((not (tileset-covers? ts g))
-                               (tmx-error path "~a: gid ~a is not in the template's tileset ~s"
+                              ((< g (tileset-first-gid ts))
+                               (tmx-error path "~a: gid ~a is below the first gid of the template's tileset ~s"
                                           (ctx-what octx) g (tileset-name ts)))
                               (else
                                (let ((first (map-first-gid-for st ts)))
@@ -684,10 +708,24 @@
   (define (decode-cells ctx node encoding compression w h)
     (let ((count (* w h)))
       (check-cells ctx count)
-      (case encoding
-        ((xml) (parse-xml-tiles ctx node count))
-        ((csv) (parse-csv ctx (x-text node) count))
-        ((base64) (parse-base64 ctx (x-text node) compression count)))))
+      (cond ((json-cells node)
+             => (lambda (v)
+                  (unless (= (u32vector-length v) count)
+                    (tmx-error (ctx-file ctx) "~a: data has ~a cells, expected ~a"
+                               (ctx-what ctx) (u32vector-length v) count))
+                  v))
+            (else
+             (case encoding
+               ((xml) (parse-xml-tiles ctx node count))
+               ((csv) (parse-csv ctx (x-text node) count))
+               ((base64) (parse-base64 ctx (x-text node) compression count)))))))
+
+  ;; A JSON file's cells, already decoded by (downstroke tmj), or #f.
+  (define (json-cells node)
+    (let loop ((cs (cdr node)))
+      (cond ((null? cs) #f)
+            ((u32vector? (car cs)) (car cs))
+            (else (loop (cdr cs))))))
 
   (define (data-format ctx data)
     (let ((encoding (attr-choice ctx data 'encoding
@@ -831,14 +869,16 @@
   ;;; ------------------------------------------------------------------
   ;;; Loading: the map
 
-  ;; A predicate: whether some tileset covers gid g (the one with the
-  ;; largest first gid not above g).
+  ;; A predicate: whether gid g belongs to some tileset (the one with the
+  ;; largest first gid not above g). A gid past the last tile of that
+  ;; tileset belongs to it too: Tiled loads such a map, keeps the gid when it
+  ;; saves, and draws nothing there (tilemap-tileset-for answers #f for it).
+  ;; Only a gid below every first gid, which Tiled refuses ("Invalid
+  ;; tile"), is an error.
   (define (gid-covered-by tilesets)
     (let ((sorted (sort-tilesets tilesets)))
       (lambda (g)
-        (let loop ((ts sorted) (best #f))
-          (cond ((and (pair? ts) (<= (tileset-first-gid (car ts)) g)) (loop (cdr ts) (car ts)))
-                (else (and best (tileset-covers? best g))))))))
+        (and (pair? sorted) (<= (tileset-first-gid (car sorted)) g)))))
 
   (define (check-gids file layers tilesets)
     ;; cells checked with a one-entry memo
@@ -855,7 +895,7 @@
                  (cond ((or (fx= g 0) (fx= g last-ok)) (loop (fx+ i 1) last-ok))
                        ((covered? g) (loop (fx+ i 1) g))
                        (else
-                        (tmx-error file "layer ~s: cell (~a, ~a) has gid ~a, which no tileset covers"
+                        (tmx-error file "layer ~s: cell (~a, ~a) has gid ~a, below the first gid of every tileset"
                                    (layer-name layer) (+ (cadr entry) (remainder i w))
                                    (+ (cddr entry) (quotient i w)) g))))))))
        layers)))
@@ -880,7 +920,7 @@
           (lambda (o)
             (let ((g (object-gid o)))
               (unless (or (zero? g) (covered? g))
-                (tmx-error file "object layer ~s: object ~a has gid ~a, which no tileset covers"
+                (tmx-error file "object layer ~s: object ~a has gid ~a, below the first gid of every tileset"
                            (layer-name layer) (object-id o) g))))
           (layer-objects layer)))
        layers)))

@@ -1,5 +1,6 @@
 ;;; (downstroke tilemap), mutation test: thousands of damaged maps (and
-;;; damaged external tilesets and templates). Each must either load or raise
+;;; damaged external tilesets and templates), in TMX and in Tiled's JSON
+;;; formats (.tmj, .tsj, .tj). Each must either load or raise
 ;;; an error whose message names the damaged file's path and says more than
 ;;; that. Deterministic: a fixed-seed generator picks every mutation.
 
@@ -44,7 +45,44 @@
                                 (number->string (fuzz-tmx-random 10))
                                 (substring text (+ digit 1) n))
                  text)))
-      ((3 4) (let ((q (substring-index "=\"" text pos)))    ; bad attribute value
+      ((3 4) (if (json-text? text)
+                 (fuzz-json-value text pos)
+                 (fuzz-xml-attribute text pos)))
+      ((5) (let ((end (min n (+ pos 1 (fuzz-tmx-random 40)))))  ; deletion
+             (string-append (substring text 0 pos) (substring text end n))))
+      (else (let ((end (min n (+ pos 1 (fuzz-tmx-random 40)))))  ; duplication
+              (string-append (substring text 0 end) (substring text pos n)))))))
+
+(define (json-text? text) (and (> (string-length text) 0) (char=? (string-ref text 0) #\{)))
+
+(define fuzz-json-values
+  '("\"\"" "-1" "0" "\"abc\"" "99999999999" "1e400" "true" "false" "null" "[]" "{}" "1.5"
+    "\"zstd\"" "\"base64\"" "\"csv\"" "4294967297" "\"../../nowhere.png\"" "[1,2" "\"#zz\""
+    "[{\"x\":1}]" "\"tilelayer\"" "\"group\"" "-0.0" "1e308"))
+
+;; A JSON member's value after pos replaced by another JSON token.
+(define (fuzz-json-value text pos)
+  (let* ((n (string-length text))
+         (q (substring-index "\":" text pos)))
+    (if q
+        (let loop ((end (+ q 2)) (depth 0) (in-string? #f))
+          (if (>= end n)
+              (substring text 0 pos)
+              (let ((c (string-ref text end)))
+                (cond (in-string? (loop (+ end (if (char=? c #\\) 2 1)) depth (not (char=? c #\"))))
+                      ((char=? c #\") (loop (+ end 1) depth #t))
+                      ((memv c '(#\[ #\{)) (loop (+ end 1) (+ depth 1) #f))
+                      ((and (memv c '(#\] #\})) (> depth 0)) (loop (+ end 1) (- depth 1) #f))
+                      ((and (= depth 0) (memv c '(#\, #\] #\})))
+                       (string-append (substring text 0 (+ q 2))
+                                      (list-ref fuzz-json-values (fuzz-tmx-random (length fuzz-json-values)))
+                                      (substring text end n)))
+                      (else (loop (+ end 1) depth #f))))))
+        (substring text 0 pos))))
+
+(define (fuzz-xml-attribute text pos)
+  (let ((n (string-length text)))
+    (let ((q (substring-index "=\"" text pos)))    ; bad attribute value
                (if q
                    (let ((end (substring-index "\"" text (+ q 2))))
                      (if end
@@ -53,14 +91,10 @@
                                                   (fuzz-tmx-random (length fuzz-tmx-values)))
                                         (substring text end n))
                          text))
-                   (substring text 0 pos))))
-      ((5) (let ((end (min n (+ pos 1 (fuzz-tmx-random 40)))))  ; deletion
-             (string-append (substring text 0 pos) (substring text end n))))
-      (else (let ((end (min n (+ pos 1 (fuzz-tmx-random 40)))))  ; duplication
-              (string-append (substring text 0 end) (substring text pos n)))))))
+                   (substring text 0 pos)))))
 
 (define fuzz-tmx-dir (create-temporary-directory))
-(system (sprintf "cp -R maps/tilesets maps/images maps/templates '~a'/" fuzz-tmx-dir))
+(system (sprintf "cp -R maps/tilesets maps/images maps/templates maps/json '~a'/" fuzz-tmx-dir))
 
 ;; Damage `file` (relative to maps/) in the copy, load `map`, and restore.
 ;; Returns #t when the outcome is acceptable, else a description.
@@ -119,5 +153,12 @@
                   "hostile-nested.tmx" "hostile-chunks.tmx"))
       (fuzz-tmx-run "features.tmx" "tilesets/terrain.tsx")
       (fuzz-tmx-run "features.tmx" "templates/enemy.tx")
+      ;; Tiled's JSON formats: a map (zstd cells, every shape, class and
+      ;; list properties), its .tsj tileset and .tj template, and a .tmx
+      ;; whose tileset is that .tsj
+      (fuzz-tmx-run "json/level.tmj" "json/level.tmj")
+      (fuzz-tmx-run "json/level.tmj" "json/terrain.tsj")
+      (fuzz-tmx-run "json/level.tmj" "json/enemy.tj")
+      (fuzz-tmx-run "json/level.tmx" "json/terrain.tsj")
       (test-assert "the mutation test ran in under 60 s"
                    (< (- (current-milliseconds) start) 60000)))))

@@ -124,6 +124,55 @@
           (ho-error (lambda () (load-tilemap p))))))
 
 
+;; The same shapes in Tiled's JSON format: arrays of 100,000 cells, points,
+;; chunks, objects and properties, and a 200,000-character string with
+;; escapes, each read in time linear in its length.
+(define (ho-json-map layers #!key (more "") (width 1) (height 1)
+                     (tileset "{\"firstgid\":1,\"name\":\"t\",\"tilewidth\":8,\"tileheight\":8,\"tilecount\":1,\"columns\":0,\"tiles\":[{\"id\":0}]}"))
+  (string-append "{\"type\":\"map\",\"orientation\":\"orthogonal\",\"width\":" (number->string width)
+                 ",\"height\":" (number->string height) ",\"tilewidth\":8,\"tileheight\":8," more
+                 "\"tilesets\":[" tileset "],\"layers\":[" layers "]}"))
+(define (ho-join n piece)
+  (with-output-to-string
+    (lambda () (let loop ((i 0)) (when (< i n) (when (> i 0) (display ",")) (display (piece i)) (loop (+ i 1)))))))
+(let ()
+  (let* ((p (ho-write "cells.tmj"
+                      (ho-json-map (string-append "{\"type\":\"tilelayer\",\"name\":\"g\",\"width\":1000,\"height\":100,\"data\":["
+                                                  (ho-join ho-n (lambda (i) (if (= i (- ho-n 1)) 1 (modulo i 2)))) "]}")
+                                   width: 1000 height: 100)))
+         (tm (load-tilemap p)))
+    (test "json: 100,000 cells, the last one" '(1000 100 1) (list (tilemap-width tm) (tilemap-height tm) (tilemap-tile-at tm 999 99))))
+  (let* ((p (ho-write "polygon.tmj"
+                      (ho-json-map (string-append "{\"type\":\"objectgroup\",\"name\":\"o\",\"objects\":[{\"id\":1,\"x\":5,\"y\":7,\"polygon\":["
+                                                  (ho-join ho-n (lambda (i) (sprintf "{\"x\":~a,\"y\":~a}" (modulo i 1000) (quotient i 100))))
+                                                  "]}]}"))))
+         (o (car (tilemap-objects (load-tilemap p)))))
+    (test "json: a polygon of 100,000 points" (list ho-n '(999 . 999)) (list (length (object-points o)) (list-ref (object-points o) 99999))))
+  (let* ((p (ho-write "chunks.tmj"
+                      (ho-json-map (string-append "{\"type\":\"tilelayer\",\"name\":\"g\",\"width\":1,\"height\":1,\"chunks\":["
+                                                  (ho-join ho-n (lambda (i) (sprintf "{\"x\":~a,\"y\":0,\"width\":1,\"height\":1,\"data\":[1]}" (- i 50000))))
+                                                  "]}")
+                                   more: "\"infinite\":true,")))
+         (tm (load-tilemap p)))
+    (test "json: 100,000 chunks" (list -50000 ho-n 1) (list (tilemap-origin-col tm) (tilemap-width tm) (tilemap-tile-at tm 49999 0))))
+  (let* ((p (ho-write "objects.tmj"
+                      (ho-json-map (string-append "{\"type\":\"objectgroup\",\"name\":\"o\",\"objects\":["
+                                                  (ho-join ho-n (lambda (i) (sprintf "{\"id\":~a,\"x\":~a,\"y\":0}" (+ i 1) i)))
+                                                  "]}")
+                                   more: (string-append "\"properties\":["
+                                                        (ho-join ho-n (lambda (i) (sprintf "{\"name\":\"p~a\",\"type\":\"int\",\"value\":~a}" i i)))
+                                                        "],"))))
+         (tm (load-tilemap p)))
+    (test "json: 100,000 objects and 100,000 properties" (list ho-n ho-n 99999)
+          (list (length (tilemap-objects tm)) (length (tilemap-properties tm))
+                (property-ref (tilemap-properties tm) "p99999"))))
+  (let* ((p (ho-write "string.tmj"
+                      (ho-json-map "" more: (string-append "\"properties\":[{\"name\":\"long\",\"value\":\""
+                                                           (ho-repeat ho-n (lambda (i) "a\\n")) "\"}],"))))
+         (tm (load-tilemap p)))
+    (test "json: a string of 200,000 characters with 100,000 escapes" (* 2 ho-n)
+          (string-length (property-ref (tilemap-properties tm) "long")))))
+
 ;; Map sources that are not regular files: each load must fail at once
 ;; with an error naming the map and the source (before, a FIFO or
 ;; /dev/stdin blocked the loader for ever).
@@ -139,6 +188,11 @@
 (let ((p (map-with-tileset fifo)))
   (write (list "a tileset source that is a FIFO" (ho-error (lambda () (load-tilemap p))))) (newline))
 (write (list "a map that is a FIFO" (ho-error (lambda () (load-tilemap fifo))))) (newline)
+(define json-fifo (make-pathname ho-dir "pipe.tmj"))
+(system (sprintf "mkfifo '~a'" json-fifo))
+(write (list "a .tmj map that is a FIFO" (ho-error (lambda () (load-tilemap json-fifo))))) (newline)
+(let ((p (map-with-tileset json-fifo)))
+  (write (list "a .tsj tileset source that is a FIFO" (ho-error (lambda () (load-tilemap p))))) (newline))
 (write (list "a map path with a NUL byte" (ho-error (lambda () (load-tilemap (string-append "le" (string (integer->char 0)) "vel.tmx")))))) (newline)
 
 (delete-directory ho-dir #t)

@@ -41,7 +41,12 @@
                   (list "the property is whole" 200000)
                   (list "the cell names the 100,000th tile" 100000)
                   (list "100,000 object layers, in order" '(100000 "o0" "o99999"))
-                  (list "100,000 nested groups load when the limit allows them, offsets added" 100000))))
+                  (list "100,000 nested groups load when the limit allows them, offsets added" 100000)
+                  (list "json: 100,000 cells, the last one" '(1000 100 1))
+                  (list "json: a polygon of 100,000 points" '(100000 (999 . 999)))
+                  (list "json: 100,000 chunks" '(-50000 100000 1))
+                  (list "json: 100,000 objects and 100,000 properties" '(100000 100000 99999))
+                  (list "json: a string of 200,000 characters with 100,000 escapes" 200000))))
 
 (define (every-substring? parts text)
   (or (null? parts) (and (substring-index (car parts) text) (every-substring? (cdr parts) text))))
@@ -72,6 +77,8 @@
             (list (list "a tileset source of /dev/stdin" "source.tmx" "\"/dev/stdin\"" "is not a regular file")
                   (list "a tileset source that is a FIFO" "source.tmx" "pipe.tsx" "is not a regular file")
                   (list "a map that is a FIFO" "pipe.tsx" "the map is not a regular file")
+                  (list "a .tmj map that is a FIFO" "pipe.tmj" "the map is not a regular file")
+                  (list "a .tsj tileset source that is a FIFO" "source.tmx" "pipe.tmj" "is not a regular file")
                   (list "a map path with a NUL byte" "the map has a NUL byte in its name"))))
 
 ;; Mistakes that once failed inside the library ([memq] bad argument type,

@@ -393,6 +393,45 @@
 
 (define (tmx-b64 bytes) (base64-encode (list->u8vector bytes)))
 
+(test-group "load-time choices: what Tiled itself does"
+  ;; A gid past the last tile of its tileset: Tiled loads the map and keeps
+  ;; the gid; nothing is drawn there (no tileset answers for it), and the
+  ;; cell is solid like any non-zero cell.
+  (let* ((p (tmx-write "past.tmx"
+                       (tmx-map "<data encoding=\"csv\">1,5,3,2147483654</data>"
+                                extra: "<objectgroup name=\"o\"><object id=\"3\" gid=\"9\"/></objectgroup>")))
+         (tm (load-tilemap p)))
+    (test "the cells keep the gids past the last tile" '(5 2147483654)
+          (list (tilemap-cell-at tm 1 0) (tilemap-cell-at tm 1 1)))
+    (test "no tileset answers for them, so nothing is drawn" '(#f #f #t)
+          (list (tilemap-tileset-for tm 5) (tilemap-tileset-for tm 2147483654)
+                (tileset? (tilemap-tileset-for tm 4))))
+    (test "they are solid, as every non-zero cell" '(#t #t) (list (tilemap-solid? tm 1 0) (tilemap-solid? tm 1 1)))
+    (test "an object past the last tile keeps its gid" 9 (object-gid (car (tilemap-objects tm))))
+    (test "and has no tileset" #f (tilemap-tileset-for tm 9)))
+  ;; Typed properties written without a value read as the type's empty value.
+  (let* ((props (string-append
+                 "<properties>"
+                 "<property name=\"i\" type=\"int\"/><property name=\"f\" type=\"float\"/>"
+                 "<property name=\"b\" type=\"bool\"/><property name=\"s\" type=\"string\"/>"
+                 "<property name=\"s2\"/><property name=\"c\" type=\"color\"/>"
+                 "<property name=\"fi\" type=\"file\"/><property name=\"o\" type=\"object\"/>"
+                 "<property name=\"i2\" type=\"int\" value=\"\"/>"
+                 "</properties>"))
+         (p (tmx-write "novalue.tmx" (tmx-map tmx-csv-data attrs: "" extra: (string-append "<objectgroup name=\"o\">" props "</objectgroup>"))))
+         (tm (load-tilemap p)))
+    (test "int 0, float 0.0, bool #f, string \"\", color unset, file \"\", object 0"
+          '(("i" . 0) ("f" . 0.0) ("b" . #f) ("s" . "") ("s2" . "") ("c" color) ("fi" file "")
+            ("o" object 0) ("i2" . 0))
+          (layer-properties (car (tilemap-object-layers tm)))))
+  ;; <capsule/> (Tiled 1.11) is a shape of its own.
+  (let* ((p (tmx-write "capsule.tmx"
+                       (tmx-map tmx-csv-data
+                                extra: "<objectgroup name=\"o\"><object id=\"1\" x=\"2\" y=\"3\" width=\"20\" height=\"8\"><capsule/></object></objectgroup>")))
+         (o (car (tilemap-objects (load-tilemap p)))))
+    (test "a capsule, not a rectangle" '(capsule 2 3 20 8)
+          (list (object-shape o) (object-x o) (object-y o) (object-width o) (object-height o)))))
+
 (test-group "errors name the file and the problem"
   (let ((ok (tmx-write "ok.tmx" (tmx-map tmx-csv-data))))
     (test "the well-formed base map loads" 4 (tilemap-tile-at (load-tilemap ok) 1 1)))
@@ -435,15 +474,19 @@
     (test-error "a csv cell over 32 bits" (tmx-says p "32 bits") (load-tilemap p)))
   (let ((p (tmx-write "xmltiles.tmx" (tmx-map "<data><tile gid=\"1\"/><tile/></data>"))))
     (test-error "too few <tile> elements" (tmx-says p "2 <tile> elements") (load-tilemap p)))
-  (let ((p (tmx-write "gid.tmx" (tmx-map "<data encoding=\"csv\">1,2,3,5</data>"))))
-    (test-error "a gid no tileset covers" (tmx-says p "cell (1, 1)" "gid 5" "no tileset covers")
+  (let ((p (tmx-write "gid.tmx" (tmx-map "<data encoding=\"csv\">1,2,3,2</data>"
+                                          tilesets: "<tileset firstgid=\"2\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"4\" columns=\"2\"><image source=\"img.png\" width=\"16\" height=\"16\"/></tileset>"))))
+    (test-error "a gid below every tileset's first gid (Tiled: \"Invalid tile\")"
+                (tmx-says p "cell (0, 0)" "gid 1" "below the first gid of every tileset")
                 (load-tilemap p)))
-  (let ((p (tmx-write "gidflip.tmx" (tmx-map "<data encoding=\"csv\">1,2,3,2147483653</data>"))))
-    (test-error "an uncovered gid behind flip flags" (tmx-says p "gid 5") (load-tilemap p)))
+  (let ((p (tmx-write "gidflip.tmx" (tmx-map "<data encoding=\"csv\">0,0,0,2147483649</data>"
+                                              tilesets: "<tileset firstgid=\"2\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"4\" columns=\"2\"><image source=\"img.png\" width=\"16\" height=\"16\"/></tileset>"))))
+    (test-error "an uncovered gid behind flip flags" (tmx-says p "gid 1") (load-tilemap p)))
   (let ((p (tmx-write "objgid.tmx"
-                      (tmx-map tmx-csv-data
-                               extra: "<objectgroup name=\"o\"><object id=\"3\" gid=\"9\"/></objectgroup>"))))
-    (test-error "an object gid no tileset covers" (tmx-says p "object 3" "gid 9") (load-tilemap p)))
+                      (tmx-map "<data encoding=\"csv\">0,0,0,0</data>"
+                               tilesets: "<tileset firstgid=\"5\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"4\" columns=\"2\"><image source=\"img.png\" width=\"16\" height=\"16\"/></tileset>"
+                               extra: "<objectgroup name=\"o\"><object id=\"3\" gid=\"4\"/></objectgroup>"))))
+    (test-error "an object gid below every first gid" (tmx-says p "object 3" "gid 4") (load-tilemap p)))
   (let ((p (tmx-write "notsx.tmx" (tmx-map tmx-csv-data tilesets: "<tileset firstgid=\"1\" source=\"sets/none.tsx\"/>"))))
     (test-error "a missing .tsx" (tmx-says p "tileset file" "sets/none.tsx" "not found") (load-tilemap p)))
   (let ((p (tmx-write "noimg.tmx"
