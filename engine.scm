@@ -147,6 +147,9 @@
   ;;; the scene's engine update -> update: (game dt) -> camera follow; then,
   ;;; once per loop that ran a frame: render-scene! (or a black clear when
   ;;; there is no scene), render: (game), present. dt is always frame-delay.
+  ;;; The scene is drawn at game time frames-run * frame-delay ms
+  ;;; (render-scene!'s time:), so the map's animated tiles play at the
+  ;;; durations Tiled gives them and a replay draws the same frames.
   ;;; A headless run with frames: N never sleeps: it runs exactly N logical
   ;;; frames back to back, each one rendered.
   ;;;
@@ -274,7 +277,9 @@
           (t0 (now-ms)))
       (if scene
           (render-scene! renderer scene textures: (game-textures game)
-                         debug?: (game-debug? game))
+                         debug?: (game-debug? game)
+                         ;; game time: animated map tiles follow the frames run
+                         time: (* (game-frame game) (game-frame-delay game)))
           (begin (render-draw-color-set! renderer 0 0 0)
                  (render-clear! renderer)))
       (let ((hook (active-render-hook game)))

@@ -344,10 +344,14 @@
 
   ;; Where a tile object's image hangs from its (x, y): the fractions of
   ;; its width and height left of and above that point, (values ax ay).
-  ;; Tiled's default (unspecified) for orthogonal maps is bottom-left.
+  ;; Tiled's default (unspecified) is bottom-left, bottom-centre on
+  ;; isometric maps.
   (define (tilemap-object-anchor tm object)
     (let* ((ts (tilemap-tileset-for tm (object-cell object)))
-           (align (if ts (tileset-object-alignment ts) 'unspecified)))
+           (align (if ts (tileset-object-alignment ts) 'unspecified))
+           (align (if (and (eq? align 'unspecified) (eq? (tilemap-orientation tm) 'isometric))
+                      'bottom
+                      align)))
       (case align
         ((top-left) (values 0 0)) ((top) (values 1/2 0)) ((top-right) (values 1 0))
         ((left) (values 0 1/2)) ((center) (values 1/2 1/2)) ((right) (values 1 1/2))

@@ -694,9 +694,16 @@
          (else '())))
      (x-children node)))
 
+  ;; Tiled still reads an image layer's old x and y attributes as its
+  ;; offset when it has neither offsetx nor offsety.
+  (define (legacy-offset ctx node axis)
+    (if (and (eq? (car node) 'imagelayer) (not (x-attr node 'offsetx)) (not (x-attr node 'offsety)))
+        (attr-number ctx node axis 0)
+        0))
+
   (define (compose-inherited ctx node inh)
-    (make-inherited (+ (in-offset-x inh) (attr-number ctx node 'offsetx 0))
-                    (+ (in-offset-y inh) (attr-number ctx node 'offsety 0))
+    (make-inherited (+ (in-offset-x inh) (attr-number ctx node 'offsetx (legacy-offset ctx node 'x)))
+                    (+ (in-offset-y inh) (attr-number ctx node 'offsety (legacy-offset ctx node 'y)))
                     (* (in-parallax-x inh) (attr-number ctx node 'parallaxx 1))
                     (* (in-parallax-y inh) (attr-number ctx node 'parallaxy 1))
                     (* (in-opacity inh) (attr-number ctx node 'opacity 1))

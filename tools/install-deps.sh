@@ -4,7 +4,7 @@
 set -e
 PACKAGES="chicken-bin libchicken-dev gcc pkg-config libsdl2-dev libsdl2-image-dev
 libsdl2-mixer-dev libsdl2-ttf-dev libexpat1-dev zlib1g-dev libzstd-dev
-fonts-dejavu-core xvfb xauth"
+fonts-dejavu-core xvfb xauth tiled"
 
 missing=""
 for p in $PACKAGES; do
