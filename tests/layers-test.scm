@@ -551,5 +551,35 @@
     (test "game-load-scene! loads an isometric map" #t (scene? outcome))
     (test "and it becomes the game's scene, its textures the game's" '(#f #f #t) before)))
 
+(test-group "game-load-scene!: the map's background colour; animated tiles in game time"
+  ;; gid 2 animates: yellow (local 1) for 100 ms, then magenta (local 2)
+  ;; for 100 ms, round again; frames are 16 ms, drawn at frames-run * 16.
+  (let ((path (ly-path "animated.tmx")))
+    (with-output-to-file path
+      (lambda ()
+        (print "<?xml version=\"1.0\" encoding=\"UTF-8\"?>")
+        (print "<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"4\" height=\"3\" tilewidth=\"8\" tileheight=\"8\" infinite=\"0\" backgroundcolor=\"#102030\">")
+        (print " <tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"4\" columns=\"4\">")
+        (print "  <image source=\"tiles.png\" width=\"32\" height=\"8\"/>")
+        (print "  <tile id=\"1\"><animation><frame tileid=\"1\" duration=\"100\"/><frame tileid=\"2\" duration=\"100\"/></animation></tile>")
+        (print " </tileset>")
+        (print " <layer id=\"1\" name=\"l\" width=\"4\" height=\"3\"><data encoding=\"csv\">2,0,0,0,0,0,0,0,0,0,0,0</data></layer>")
+        (print "</map>")))
+    (define (run frames #!optional (background #f))
+      (let* ((seen #f)
+             (g (ly-run-game frames
+                             (lambda (g) (if background
+                                             (game-load-scene! g path camera-target: #f background: background)
+                                             (game-load-scene! g path camera-target: #f)))
+                             render: (lambda (g) (set! seen (list (ly-game-pixel g 4 4)
+                                                                  (ly-game-pixel g 20 20)))))))
+        seen))
+    (test "the map's backgroundcolor is the scene's background; the tile's first frame at 16 ms"
+          (list ly-yellow '(16 32 48 255)) (run 1))
+    (test "background: wins over the map's colour" '(1 2 3 255) (cadr (run 1 '(1 2 3))))
+    (test "the second frame at 112 ms" ly-magenta (car (run 7)))
+    (test "still the second at 192 ms" ly-magenta (car (run 12)))
+    (test "the first again at 208 ms" ly-yellow (car (run 13)))))
+
 (free-surface! ly-surface)
 (delete-directory ly-dir #t)
