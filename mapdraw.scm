@@ -15,7 +15,8 @@
 ;;; the elapsed time in milliseconds that animated tiles are shown at.
 ;;;
 ;;; Where a tile is drawn. Every orientation places a cell's image by its
-;;; bottom-left corner, the cell's anchor (cell-anchor), in "screen"
+;;; bottom-left corner, the cell's anchor (tilemap-cell-anchor of (downstroke
+;;; map)), in "screen"
 ;;; pixels of the map (the picture tmxrasterizer draws, whose top-left is
 ;;; (0, 0)); then the tileset's <tileoffset> moves it. A tile larger than
 ;;; the map's cells overhangs up and to the right. The anchors:
@@ -60,10 +61,9 @@
 
 (module (downstroke mapdraw)
   (render-map-layers! screen-coordinate tileset-source-rect layer-camera
-   check-map-orientation tile-animation-frame cell-anchor object-screen-point
-   map-screen-size floor-int ceiling-int)
+   check-map-orientation tile-animation-frame floor-int ceiling-int)
 
-  (import scheme (chicken base) (chicken format) (chicken sort) (chicken bitwise) srfi-4
+  (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
           (downstroke sdl2) (downstroke map))
 
   ;; The rounding rule: world coordinate -> whole screen pixel.
@@ -217,78 +217,14 @@
   ;;; ------------------------------------------------------------------
   ;;; Orientations
 
-  (define (info-height tm) (tilemap-height tm))
-
-  ;; Tiled's hexagonal parameters (staggered maps are hexagonal maps with
-  ;; a side length of 0): a vector
-  ;;   #(tw th side-x side-y stagger-x? stagger-even? column-width row-height side-offset-x side-offset-y)
-  (define (hex-params tm)
-    (let* ((tw (bitwise-and (tilemap-tile-width tm) (bitwise-not 1)))
-           (th (bitwise-and (tilemap-tile-height tm) (bitwise-not 1)))
-           (hex? (eq? (tilemap-orientation tm) 'hexagonal))
-           (stagger-x? (eq? (tilemap-stagger-axis tm) 'x))
-           (even? (eq? (tilemap-stagger-index tm) 'even))
-           (side (if hex? (or (tilemap-hex-side-length tm) 0) 0))
-           (side-x (if stagger-x? side 0))
-           (side-y (if stagger-x? 0 side))
-           (off-x (quotient (- tw side-x) 2))
-           (off-y (quotient (- th side-y) 2)))
-      (vector tw th side-x side-y stagger-x? even? (+ off-x side-x) (+ off-y side-y) off-x off-y)))
-
-  (define (staggered? p i) (not (eq? (odd? i) (vector-ref p 5))))
-
-  ;; The bottom-left corner of cell (col, row)'s image, before the
-  ;; tileset's offset; `p` the hex parameters for staggered and hexagonal
-  ;; maps (#f otherwise).
-  (define (cell-anchor tm col row #!optional (p #f))
-    (let ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)))
-      (case (tilemap-orientation tm)
-        ((isometric)
-         (values (+ (/ (* (- col row) tw) 2) (/ (* (info-height tm) tw) 2) (- (/ tw 2)))
-                 (+ (/ (* (+ col row) th) 2) th)))
-        ((staggered hexagonal)
-         (let ((p (or p (hex-params tm))))
-           (if (vector-ref p 4)           ; stagger axis x
-               (values (* col (vector-ref p 6))
-                       (+ (* row (+ (vector-ref p 1) (vector-ref p 3)))
-                          (if (staggered? p col) (vector-ref p 7) 0)
-                          (vector-ref p 1)))
-               (values (+ (* col (+ (vector-ref p 0) (vector-ref p 2)))
-                          (if (staggered? p row) (vector-ref p 6) 0))
-                       (+ (* row (vector-ref p 7)) (vector-ref p 1))))))
-        (else (values (* col tw) (* (+ row 1) th))))))
-
-  ;; The size in screen pixels of the picture Tiled draws of the map
-  ;; (its renderer's map size): (values width height).
-  (define (map-screen-size tm)
-    (let ((w (tilemap-width tm)) (h (tilemap-height tm))
-          (tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)))
-      (case (tilemap-orientation tm)
-        ((isometric) (values (/ (* (+ w h) tw) 2) (/ (* (+ w h) th) 2)))
-        ((staggered hexagonal)
-         (let ((p (hex-params tm)))
-           (if (vector-ref p 4)
-               (values (+ (* w (vector-ref p 6)) (vector-ref p 8))
-                       (+ (* h (+ (vector-ref p 1) (vector-ref p 3)))
-                          (if (> w 1) (vector-ref p 7) 0)))
-               (values (+ (* w (+ (vector-ref p 0) (vector-ref p 2)))
-                          (if (> h 1) (vector-ref p 6) 0))
-                       (+ (* h (vector-ref p 7)) (vector-ref p 9))))))
-        (else (values (* w tw) (* h th))))))
-
-  ;; A map position (x, y) in pixels (an object's) as a screen point:
-  ;; isometric maps project it, the others draw it as it is.
-  (define (object-screen-point tm x y)
-    (if (eq? (tilemap-orientation tm) 'isometric)
-        (let* ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm))
-               (cx (/ x th)) (cy (/ y th)))
-          (values (+ (/ (* (- cx cy) tw) 2) (/ (* (info-height tm) tw) 2))
-                  (/ (* (+ cx cy) th) 2)))
-        (values x y)))
+  ;; Staggered and hexagonal maps: whether column (stagger axis x) or
+  ;; row (y) i is pushed down (right) half a cell.
+  (define (stagger-x? tm) (eq? (tilemap-stagger-axis tm) 'x))
+  (define (staggered? tm i) (not (eq? (odd? i) (eq? (tilemap-stagger-index tm) 'even))))
 
   ;; Calls (visit col row) for the cells in Tiled's drawing order (see
   ;; above); cols c0..c1 and rows r0..r1, inclusive.
-  (define (for-each-cell-in-order tm c0 c1 r0 r1 p visit)
+  (define (for-each-cell-in-order tm c0 c1 r0 r1 visit)
     (case (tilemap-orientation tm)
       ((isometric)
        (do ((s (+ c0 r0) (+ s 1))) ((> s (+ c1 r1)))
@@ -296,13 +232,13 @@
            (visit col (- s col)))))
       ((staggered hexagonal)
        (do ((row r0 (+ row 1))) ((> row r1))
-         (if (vector-ref p 4)
+         (if (stagger-x? tm)
              ;; the higher half of the row first
              (begin
                (do ((col c0 (+ col 1))) ((> col c1))
-                 (unless (staggered? p col) (visit col row)))
+                 (unless (staggered? tm col) (visit col row)))
                (do ((col c0 (+ col 1))) ((> col c1))
-                 (when (staggered? p col) (visit col row))))
+                 (when (staggered? tm col) (visit col row))))
              (do ((col c0 (+ col 1))) ((> col c1)) (visit col row)))))
       (else
        (let* ((order (tilemap-render-order tm))
@@ -315,6 +251,39 @@
                  (visit col row)
                  (cols (if left? (- col 1) (+ col 1)))))
              (rows (if up? (- row 1) (+ row 1)))))))))
+
+  ;; On isometric, staggered and hexagonal maps: a range of cells (values
+  ;; col0 col1 row0 row1) holding every cell whose anchor (tilemap-cell-anchor)
+  ;; lies in [x0, x1] x [y0, y1], with a cell to spare on each side.
+  (define (anchor-cells tm x0 x1 y0 y1)
+    (let* ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)))
+      (define (span lo hi) (values (- (floor-int lo) 2) (+ (ceiling-int hi) 2)))
+      (case (tilemap-orientation tm)
+        ((isometric)
+         ;; u = col - row and s = col + row are linear in the anchor
+         (let* ((u (lambda (x) (/ (+ x (/ tw 2) (- (/ (* (tilemap-height tm) tw) 2))) (/ tw 2))))
+                (sm (lambda (y) (/ (- y th) (/ th 2))))
+                (u0 (u x0)) (u1 (u x1)) (s0 (sm y0)) (s1 (sm y1)))
+           (receive (c0 c1) (span (/ (+ s0 u0) 2) (/ (+ s1 u1) 2))
+             (receive (r0 r1) (span (/ (- s0 u1) 2) (/ (- s1 u0) 2))
+               (values c0 c1 r0 r1)))))
+        (else
+         ;; Tiled rounds the cell size down to even numbers; a staggered
+         ;; row or column moves by at most a cell; the side length
+         ;; stretches the stagger axis only
+         (let* ((tw (- tw (modulo tw 2))) (th (- th (modulo th 2)))
+                (side (if (eq? (tilemap-orientation tm) 'hexagonal)
+                          (or (tilemap-hex-side-length tm) 0)
+                          0)))
+           (if (stagger-x? tm)
+               (let ((cw (+ (quotient (- tw side) 2) side)))
+                 (receive (c0 c1) (span (/ x0 (max 1 cw)) (/ x1 (max 1 cw)))
+                   (receive (r0 r1) (span (/ (- y0 th th) th) (/ (- y1 th) th))
+                     (values c0 c1 r0 r1))))
+               (let ((rh (+ (quotient (- th side) 2) side)))
+                 (receive (c0 c1) (span (/ (- x0 tw) tw) (/ x1 tw))
+                   (receive (r0 r1) (span (/ (- y0 th) (max 1 rh)) (/ (- y1 th) (max 1 rh)))
+                     (values c0 c1 r0 r1))))))))))
 
   ;; How far the tiles of the map's tilesets can reach beyond their cell:
   ;; (values left right up down) in pixels, for culling.
@@ -350,7 +319,6 @@
           (data (layer-data layer))
           (ortho? (eq? (tilemap-orientation tm) 'orthogonal))
           (hex? (eq? (tilemap-orientation tm) 'hexagonal))
-          (p (and (memq (tilemap-orientation tm) '(staggered hexagonal)) (hex-params tm)))
           ;; <tileoffset>s are rare: look the tileset up again only then
           (offsets? (let loop ((tss (tilemap-tilesets tm)))
                       (and (pair? tss)
@@ -366,7 +334,7 @@
                 (unless (zero? (cell-gid cell))
                   (receive (tex sx sy sw sh) (gid-image tm (cell-gid cell) tex-for time)
                     (when tex
-                      (receive (ax ay) (cell-anchor tm col row p)
+                      (receive (ax ay) (tilemap-cell-anchor tm col row)
                         (let* ((ts (and offsets? (tilemap-tileset-for tm cell)))
                                (left (screen-coordinate (+ ax (if ts (tileset-offset-x ts) 0)) lx))
                                (bottom (screen-coordinate (+ ay (if ts (tileset-offset-y ts) 0)) ly))
@@ -395,8 +363,14 @@
                  (min c-hi (- (ceiling-int (/ (+ lx vw reach-l) tw)) 1))
                  (max r-lo (floor-int (/ (- ly reach-d) th)))
                  (min r-hi (- (ceiling-int (/ (+ ly vh reach-u) th)) 2))
-                 p draw-cell)
-                (for-each-cell-in-order tm c-lo c-hi r-lo r-hi p draw-cell)))))))
+                 draw-cell)
+                ;; the cells whose anchors can fall in the view grown by
+                ;; the tiles' reach, from the inverse of tilemap-cell-anchor
+                (receive (c0 c1 r0 r1)
+                    (anchor-cells tm (- lx reach-r) (+ lx vw reach-l)
+                                  (- ly reach-d) (+ ly vh reach-u))
+                  (for-each-cell-in-order tm (max c-lo c0) (min c-hi c1)
+                                          (max r-lo r0) (min r-hi r1) draw-cell))))))))
 
   ;; The screen positions at which copies of a span of `size` pixels
   ;; starting at `start` are drawn to cover [0, view) when repeated, or
@@ -438,7 +412,7 @@
 
   ;; One object layer: its visible tile objects, each the tile's image
   ;; stretched over the object's box (tilemap-object-box, placed on the
-  ;; screen by object-screen-point), flipped by its flags and rotated by its
+  ;; screen by tilemap-screen-point), flipped by its flags and rotated by its
   ;; rotation about its anchor point, in the layer's draw order (topdown:
   ;; by y, index: as written). Other shapes are drawn only by the debug
   ;; overlay.
@@ -451,7 +425,7 @@
              (when tex
                (prepare! tex)
                (receive (bx by bw bh) (tilemap-object-box tm o)
-                 (receive (px py) (object-screen-point tm (object-x o) (object-y o))
+                 (receive (px py) (tilemap-screen-point tm (object-x o) (object-y o))
                    (let* ((angle (object-rotation o))
                           ;; the box moved with its anchor to the screen
                           (bx (+ bx (- px (object-x o)))) (by (+ by (- py (object-y o))))

@@ -3,7 +3,7 @@
 ;;; and small maps written here, one per drawing feature.
 ;;;
 ;;; How a case compares. tmxrasterizer draws the map into a picture the size
-;;; of the map's screen size (map-screen-size) grown by the layers' offsets
+;;; of the map's screen size (tilemap-screen-size) grown by the layers' offsets
 ;;; (Tiled's margins: a layer at offset -0.5 adds a pixel on the left); it
 ;;; leaves the background transparent, so its picture is laid over black.
 ;;; Downstroke draws the same map over black through a camera at minus the
@@ -136,7 +136,7 @@
   (let* ((tm0 (load-tilemap tmx))
          (tm (if (null? hide) tm0
                  (tilemap-hide-layers tm0 (lambda (l) (member (layer-name l) hide))))))
-    (receive (mw mh) (map-screen-size tm)
+    (receive (mw mh) (tilemap-screen-size tm)
       (receive (ml mt mr mb) (tc-margins tm)
         (let* ((pw (+ mw ml mr)) (ph (+ mh mt mb))
                (region (or region (list 0 0 pw ph)))
@@ -335,3 +335,29 @@
        ("hexagonal-y-even" "hexagonal" "hexsidelength=\"4\" staggeraxis=\"y\" staggerindex=\"even\"")
        ("hexagonal-x-odd" "hexagonal" "hexsidelength=\"6\" staggeraxis=\"x\" staggerindex=\"odd\"")
        ("hexagonal-x-even" "hexagonal" "hexsidelength=\"6\" staggeraxis=\"x\" staggerindex=\"even\"")))))
+
+;;; Only the cells the view can show are visited, on every orientation: a
+;;; 200 x 200 map viewed 64 x 48 pixels at a time asks for the textures of
+;;; a few hundred cells (the view's bounding box in cells), not 40,000
+;;; (the textures procedure is asked once per cell considered).
+(test-group "other orientations: only what the camera sees"
+  (for-each
+   (lambda (o)
+     (let* ((name (string-append "big-" (car o)))
+            (path (tc-map! name (sprintf "orientation=\"~a\" renderorder=\"right-down\" width=\"200\" height=\"200\" tilewidth=\"16\" tileheight=\"8\" ~a"
+                                         (car o) (cadr o))
+                           (list (tc-tileset 1 "big" 16 16 8 4 "big.png" 64 32))
+                           (list (tc-layer 1 "l" 200 200 (let loop ((n 40000) (acc '()))
+                                                          (if (= n 0) acc (loop (- n 1) (cons 1 acc))))))))
+            (tm (load-tilemap path))
+            (s (create-rgba-surface! 64 48))
+            (r (create-software-renderer! s))
+            (tex (img-load-texture! r (tc-path "big.png")))
+            (asked 0))
+       (render-scene! r (make-scene tilemap: tm camera: (make-camera x: 1000 y: 600 bounds: #f))
+                      textures: (lambda (p) (set! asked (+ asked 1)) tex))
+       (test-assert (sprintf "~a: ~a cells considered, fewer than 1,000" (car o) asked)
+                    (< 0 asked 1000))
+       (free-surface! s)))
+   '(("isometric" "") ("staggered" "staggeraxis=\"x\" staggerindex=\"even\"")
+     ("hexagonal" "hexsidelength=\"4\" staggeraxis=\"y\" staggerindex=\"odd\""))))
