@@ -266,10 +266,29 @@
         (when path (check-exists ctx path "image"))
         (unless (or path (x-child node 'data))
           (tmx-error (ctx-file ctx) "~a: <image> has neither a source nor data" (ctx-what ctx)))
-        (make-image path
-                    (attr-int ctx node 'width #f 0)
-                    (attr-int ctx node 'height #f 0)
-                    (attr-color ctx node 'trans)))))
+        ;; width and height are optional: Tiled then reads the image's
+        ;; own size, which a PNG's header gives (other formats stay #f and
+        ;; the renderer counts columns from the loaded texture)
+        (let* ((w (attr-int ctx node 'width #f 0))
+               (h (attr-int ctx node 'height #f 0))
+               (size (and path (not (and w h)) (png-size path))))
+          (make-image path
+                      (or w (and size (car size)))
+                      (or h (and size (cdr size)))
+                      (attr-color ctx node 'trans))))))
+
+  ;; (width . height) from a PNG file's header, or #f when it is not one.
+  (define (png-size path)
+    (let ((head (handle-exceptions exn #f
+                  (call-with-input-file path (lambda (in) (read-u8vector 24 in)) #:binary))))
+      (and (u8vector? head) (= (u8vector-length head) 24)
+           (equal? (subu8vector head 0 8) (u8vector 137 80 78 71 13 10 26 10))
+           (equal? (subu8vector head 12 16) (u8vector 73 72 68 82)) ; IHDR
+           (let ((be32 (lambda (i) (+ (* 16777216 (u8vector-ref head i))
+                                      (* 65536 (u8vector-ref head (+ i 1)))
+                                      (* 256 (u8vector-ref head (+ i 2)))
+                                      (u8vector-ref head (+ i 3))))))
+             (cons (be32 16) (be32 20))))))
 
   (define (parse-animation ctx node)
     (let ((anim (x-child node 'animation)))

@@ -163,6 +163,12 @@
     (define (ex f) (make-pathname tc-examples f))
     (tc-compare "desert" (ex "desert.tmx") region: '(0 0 320 320))
     (tc-compare "sewers" (ex "sewers.tmx") region: '(96 96 288 240))
+    ;; its tileset's <image> has no width or height: read from the PNG
+    (let ((ts (car (tilemap-tilesets (load-tilemap (ex "perspective_walls.tmx"))))))
+      (test "perspective_walls: columns and tile count from the image itself (256 x 256 of 64 x 64)"
+            '(4 16 256 256)
+            (list (tileset-columns ts) (tileset-tile-count ts)
+                  (image-width (tileset-image ts)) (image-height (tileset-image ts)))))
     (tc-compare "perspective-walls" (ex "perspective_walls.tmx") region: '(160 160 320 320))
     (tc-compare "island" (ex "rpg/island.tmx") hide: '("Objects") region: '(160 96 320 320))
     ;; The layer "game" is hidden: its objects come from templates, and
