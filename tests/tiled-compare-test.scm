@@ -21,7 +21,8 @@
 ;;; DOWNSTROKE_WRITE_REFS=1 where Tiled is installed (DOWNSTROKE_NO_TILED=1
 ;;; uses the references even then). With
 ;;; DOWNSTROKE_TILED_OUT=DIR, Downstroke's and Tiled's pictures of every
-;;; case are written to DIR (to look at them).
+;;; case are written to DIR (to look at them), and NAME-side.png with the
+;;; two side by side (docs/images/tiled-*.png are some of those).
 
 (import scheme (chicken base) (chicken file) (chicken format) (chicken string)
         (chicken process) (chicken pathname) (chicken process-context) srfi-4
@@ -72,6 +73,20 @@
     (do ((j 0 (+ j 1))) ((= j h) out)
       (do ((i 0 (+ i 1))) ((= i (* 4 w)))
         (u8vector-set! out (+ (* j w 4) i) (u8vector-ref bytes (+ (* (+ y j) bw 4) (* x 4) i)))))))
+
+;; Downstroke's picture and Tiled's side by side, 8 white pixels apart,
+;; a picture narrower than 300 pixels enlarged (nearest pixel) 2 to 4 times.
+(define (tc-save-side! ours tiled w h path)
+  (let* ((k (max 1 (min 4 (quotient 600 w))))
+         (sw (+ (* k w) 8 (* k w))) (sh (* k h))
+         (out (make-u8vector (* sw sh 4) 255)))
+    (do ((y 0 (+ y 1))) ((= y sh))
+      (do ((x 0 (+ x 1))) ((= x (* k w)))
+        (do ((c 0 (+ c 1))) ((= c 4))
+          (let ((from (+ (* (quotient y k) w 4) (* (quotient x k) 4) c)))
+            (u8vector-set! out (+ (* y sw 4) (* x 4) c) (u8vector-ref ours from))
+            (u8vector-set! out (+ (* y sw 4) (* (+ x (* k w) 8) 4) c) (u8vector-ref tiled from))))))
+    (tc-save! out sw sh path)))
 
 (define (tc-save! bytes w h path)
   (let ((s (rgba-pixels->surface! bytes w h)))
@@ -147,7 +162,8 @@
                 (when tc-out
                   (create-directory tc-out #t)
                   (tc-save! ours w h (make-pathname tc-out (string-append name "-downstroke") "png"))
-                  (tc-save! tiled w h (make-pathname tc-out (string-append name "-tiled") "png")))
+                  (tc-save! tiled w h (make-pathname tc-out (string-append name "-tiled") "png"))
+                  (tc-save-side! ours tiled w h (make-pathname tc-out (string-append name "-side") "png")))
                 (let ((n (tc-diff-count ours tiled tolerance)))
                   (test (sprintf "~a: at most ~a of ~a pixels differ from Tiled's~a"
                                  name allowed (* w h) (if known (string-append " (" known ")") ""))
