@@ -336,6 +336,37 @@
                           (list (tc-layer 1 "l" 2 1 (list 1 (+ 1 tc-h)))))
                  time: time))
    '(0 100 101 150 151 350 351 1000))
+  ;; tile objects: scaled, flipped, turned a quarter and a half, animated,
+  ;; from tilesets of each objectalignment
+  (tc-compare "tile-objects"
+              (tc-map! "tile-objects" (tc-ortho "renderorder=\"right-down\"" 8 6 8 8)
+                       (list (tc-tileset 1 "s" 8 8 8 4 "sq.png" 32 16 ""
+                                         "<tile id=\"5\"><animation><frame tileid=\"6\" duration=\"10\"/><frame tileid=\"7\" duration=\"10\"/></animation></tile>")
+                             (tc-tileset 9 "c" 8 8 8 4 "sq.png" 32 16 "objectalignment=\"center\"")
+                             (tc-tileset 17 "tr" 8 8 8 4 "sq.png" 32 16 "objectalignment=\"topright\""))
+                       (list (string-append
+                              "<objectgroup id=\"1\" name=\"o\">"
+                              "<object id=\"1\" gid=\"1\" x=\"0\" y=\"16\" width=\"16\" height=\"16\"/>"
+                              (sprintf "<object id=\"2\" gid=\"~a\" x=\"24\" y=\"16\" width=\"8\" height=\"8\"/>" (+ 2 tc-h))
+                              (sprintf "<object id=\"3\" gid=\"~a\" x=\"40\" y=\"16\" width=\"8\" height=\"16\"/>" (+ 3 tc-v))
+                              "<object id=\"4\" gid=\"4\" x=\"8\" y=\"40\" width=\"16\" height=\"8\" rotation=\"90\"/>"
+                              "<object id=\"5\" gid=\"5\" x=\"40\" y=\"40\" width=\"8\" height=\"8\" rotation=\"180\"/>"
+                              "<object id=\"6\" gid=\"6\" x=\"48\" y=\"16\" width=\"8\" height=\"8\"/>"
+                              "<object id=\"7\" gid=\"10\" x=\"56\" y=\"32\" width=\"8\" height=\"8\"/>"
+                              "<object id=\"8\" gid=\"20\" x=\"56\" y=\"40\" width=\"8\" height=\"8\"/>"
+                              "</objectgroup>")))
+              time: 15)
+  ;; a tinted layer and a group's tint over it
+  (tc-compare "tint"
+              (tc-map! "tint" (tc-ortho "renderorder=\"right-down\"" 4 2 8 8)
+                       (list (tc-tileset 1 "s" 8 8 8 4 "sq.png" 32 16))
+                       (list (tc-layer 1 "a" 4 2 '(1 2 3 4 5 6 7 8) "tintcolor=\"#ff8040\"")))
+              tolerance: 3)
+  ;; an image layer repeated across the map
+  (tc-compare "repeat"
+              (tc-map! "repeat" (tc-ortho "renderorder=\"right-down\"" 8 4 8 8)
+                       '()
+                       (list "<imagelayer id=\"1\" name=\"r\" offsetx=\"5\" offsety=\"3\" repeatx=\"1\"><image source=\"wide.png\" width=\"32\" height=\"16\"/></imagelayer>")))
   ;; every orientation and stagger, with tiles taller than their cells so
   ;; the stacking order shows, and tile objects
   (let ((cells '(1 2 3 4 5 6 7 8 1 2 3 4 5 6 7 8 1 2 3 4))
