@@ -59,6 +59,21 @@
                 (max l (ceiling-int (- ox))) (max t (ceiling-int (- oy)))
                 (max r (ceiling-int ox)) (max b (ceiling-int oy)))))))
 
+;; The map's part of Tiled's picture: (values width height x y), x y the
+;; map pixel at its top-left corner. An infinite orthogonal map's picture
+;; covers its chunks' bounds rounded out to Tiled's 16-cell chunks (the
+;; staggered example's start at 0 and need no rounding).
+(define (tc-picture tm)
+  (receive (w h) (tilemap-screen-size tm)
+    (if (and (tilemap-infinite? tm) (eq? (tilemap-orientation tm) 'orthogonal))
+        (let* ((c0 (* 16 (floor-int (/ (tilemap-origin-col tm) 16))))
+               (r0 (* 16 (floor-int (/ (tilemap-origin-row tm) 16))))
+               (c1 (* 16 (ceiling-int (/ (+ (tilemap-origin-col tm) (tilemap-width tm)) 16))))
+               (r1 (* 16 (ceiling-int (/ (+ (tilemap-origin-row tm) (tilemap-height tm)) 16))))
+               (tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)))
+          (values (* tw (- c1 c0)) (* th (- r1 r0)) (* tw c0) (* th r0)))
+        (values w h 0 0))))
+
 ;; RGBA bytes of a w x h picture laid over opaque black.
 (define (tc-over-black bytes)
   (let* ((n (u8vector-length bytes)) (out (make-u8vector n 255)))
@@ -151,9 +166,10 @@
   (let* ((tm0 (load-tilemap tmx))
          (tm (if (null? hide) tm0
                  (tilemap-hide-layers tm0 (lambda (l) (member (layer-name l) hide))))))
-    (receive (mw mh) (tilemap-screen-size tm)
+    (receive (mw mh ox oy) (tc-picture tm)
       (receive (ml mt mr mb) (tc-margins tm)
         (let* ((pw (+ mw ml mr)) (ph (+ mh mt mb))
+               (ml (- ml ox)) (mt (- mt oy))
                (region (or region (list 0 0 pw ph)))
                (tiled (tc-tiled name tmx hide time region pw ph)))
           (if (not tiled)
@@ -367,6 +383,8 @@
               (tc-map! "repeat" (tc-ortho "renderorder=\"right-down\"" 8 4 8 8)
                        '()
                        (list "<imagelayer id=\"1\" name=\"r\" offsetx=\"5\" offsety=\"3\" repeatx=\"1\"><image source=\"wide.png\" width=\"32\" height=\"16\"/></imagelayer>")))
+  ;; an infinite map with chunks at negative cells
+  (tc-compare "infinite" "maps/infinite.tmx" region: '(128 64 256 256))
   ;; every orientation and stagger, with tiles taller than their cells so
   ;; the stacking order shows, and tile objects
   (let ((cells '(1 2 3 4 5 6 7 8 1 2 3 4 5 6 7 8 1 2 3 4))
