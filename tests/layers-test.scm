@@ -579,7 +579,11 @@
     (test "background: wins over the map's colour" '(1 2 3 255) (cadr (run 1 '(1 2 3))))
     (test "the second frame at 112 ms" ly-magenta (car (run 7)))
     (test "still the second at 192 ms" ly-magenta (car (run 12)))
-    (test "the first again at 208 ms" ly-yellow (car (run 13)))))
+    (test "the first again at 208 ms" ly-yellow (car (run 13)))
+    (test-error "render-scene!'s time: must be a finite number"
+                (lambda (e) (substring-index "time: must be a finite number of milliseconds" (error-text e)))
+                (render-scene! ly-renderer (make-scene tilemap: (load-tilemap path))
+                               textures: ly-textures time: +nan.0))))
 
 (free-surface! ly-surface)
 (delete-directory ly-dir #t)
