@@ -388,7 +388,7 @@
   ;; every orientation and stagger, with tiles taller than their cells so
   ;; the stacking order shows, and tile objects
   (let ((cells '(1 2 3 4 5 6 7 8 1 2 3 4 5 6 7 8 1 2 3 4))
-        (objects "<objectgroup id=\"2\" name=\"o\"><object id=\"1\" gid=\"3\" x=\"20\" y=\"30\" width=\"16\" height=\"16\"/><object id=\"2\" gid=\"5\" x=\"40\" y=\"16\" width=\"16\" height=\"24\"/></objectgroup>"))
+        (objects "<objectgroup id=\"2\" name=\"o\"><object id=\"1\" gid=\"3\" x=\"20\" y=\"30\" width=\"16\" height=\"16\"/><object id=\"2\" gid=\"5\" x=\"40\" y=\"16\" width=\"16\" height=\"24\"/><object id=\"3\" gid=\"6\" x=\"8\" y=\"8\" width=\"16\" height=\"8\" rotation=\"90\"/></objectgroup>"))
     (for-each
      (lambda (o)
        (let ((name (car o)))
