@@ -22,6 +22,7 @@
    default-engine-update run-engine-update!
    game-start! game-step!
    game-run! game-recording game-surface game-load-scene! game-load-tilesets! game-textures
+   load-tilemap-textures!
    game-add-state! game-state-set! game-current-state game-states
    game-frame-profile game-paused? game-resume! game-quit!)
 
