@@ -61,7 +61,7 @@
 
 (module (downstroke mapdraw)
   (render-map-layers! screen-coordinate tileset-source-rect layer-camera
-   check-map-orientation tile-animation-frame floor-int ceiling-int)
+   check-map-orientation tile-animation-frame object-screen-box floor-int ceiling-int)
 
   (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
           (downstroke sdl2) (downstroke map))
@@ -398,6 +398,27 @@
                   (repeat-positions (screen-coordinate 0 lx) iw vw (layer-repeat-x? layer))))
                (repeat-positions (screen-coordinate 0 ly) ih vh (layer-repeat-y? layer)))))))))
 
+  ;; The box an object covers on the screen, (values x y w h), unrotated:
+  ;; tilemap-object-box on orthogonal, staggered and hexagonal maps; on
+  ;; isometric ones a tile object's box hangs from its projected anchor,
+  ;; and another shape's box is the bounding box of its projected corners
+  ;; (a rectangle is drawn by Tiled as a diamond within it).
+  (define (object-screen-box tm o)
+    (receive (bx by bw bh) (tilemap-object-box tm o)
+      (cond ((not (eq? (tilemap-orientation tm) 'isometric)) (values bx by bw bh))
+            ((eq? (object-shape o) 'tile)
+             (receive (px py) (tilemap-screen-point tm (object-x o) (object-y o))
+               (values (+ bx (- px (object-x o))) (+ by (- py (object-y o))) bw bh)))
+            (else
+             (let ((corners (map (lambda (c)
+                                   (receive (sx sy) (tilemap-screen-point tm (car c) (cdr c))
+                                     (cons sx sy)))
+                                 (list (cons bx by) (cons (+ bx bw) by)
+                                       (cons bx (+ by bh)) (cons (+ bx bw) (+ by bh))))))
+               (let ((x0 (apply min (map car corners))) (y0 (apply min (map cdr corners))))
+                 (values x0 y0 (- (apply max (map car corners)) x0)
+                         (- (apply max (map cdr corners)) y0))))))))
+
   (define pi (* 4 (atan 1)))
 
   ;; Exact for multiples of 90 degrees, so quarter turns land on whole pixels.
@@ -424,11 +445,9 @@
            (receive (tex sx sy sw sh) (gid-image tm (object-gid o) tex-for time)
              (when tex
                (prepare! tex)
-               (receive (bx by bw bh) (tilemap-object-box tm o)
+               (receive (bx by bw bh) (object-screen-box tm o)
                  (receive (px py) (tilemap-screen-point tm (object-x o) (object-y o))
                    (let* ((angle (object-rotation o))
-                          ;; the box moved with its anchor to the screen
-                          (bx (+ bx (- px (object-x o)))) (by (+ by (- py (object-y o))))
                           ;; the box's centre, turned about the anchor
                           (dx (- (+ bx (/ bw 2)) px)) (dy (- (+ by (/ bh 2)) py))
                           (mx (+ px (- (* dx (cosine angle)) (* dy (sine angle)))))

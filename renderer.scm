@@ -58,7 +58,8 @@
 ;;; The debug overlay. (render-debug-overlay! renderer scene #!key
 ;;; view-width view-height velocity-scale), which render-scene! calls last
 ;;; when given `debug?: #t`, draws first, with a tilemap, the outline of
-;;; the box (tilemap-object-box) of every visible object of every visible
+;;; the box (object-screen-box: tilemap-object-box, projected on isometric
+;;; maps) of every visible object of every visible
 ;;; object layer, through its layer camera, in *debug-object-color*
 ;;; (magenta): rectangles, ellipses, text, polygons (their points' bounding
 ;;; box) and tile objects alike, a point as one pixel, rotation ignored.
@@ -237,7 +238,7 @@
                  (for-each
                   (lambda (o)
                     (when (object-visible? o)
-                      (receive (x y w h) (tilemap-object-box tm o)
+                      (receive (x y w h) (object-screen-box tm o)
                         (if (and (> w 0) (> h 0))
                             (outline! r x y w h lx ly)
                             (outline! r x y 1 1 lx ly)))))

@@ -359,6 +359,21 @@
      '("isometric" "staggered" "hexagonal")
      '(12 4 4))))
 
+(test-group "layers: debug outlines of an isometric map's objects"
+  ;; a rectangle at (8, 0), 8 x 8 on a 4 x 3 isometric map of 8 x 8 cells:
+  ;; its corners project to (16, 4) (20, 8) (12, 8) (16, 12), so its
+  ;; outline is the box from (12, 4) to (20, 12)
+  (let* ((path (ly-write-map! "iso-objects.tmx" 4 3
+                              "<objectgroup id=\"9\" name=\"o\"><object id=\"1\" x=\"8\" y=\"0\" width=\"8\" height=\"8\"/></objectgroup>\n"
+                              orientation: "isometric"))
+         (px (begin (render-scene! ly-renderer (make-scene tilemap: (load-tilemap path) background: '(0 0 0))
+                                   textures: ly-textures debug?: #t)
+                    (renderer-pixels ly-renderer))))
+    (test "the outline's corners and sides are where the projected box is"
+          (list ly-magenta ly-magenta ly-magenta ly-magenta)
+          (list (px 12 4) (px 19 4) (px 12 11) (px 19 8)))
+    (test "and nothing where the unprojected box would be" '(0 0 0 255) (px 8 2))))
+
 (test-group "layers: tilemap-hide-layers"
   (let* ((tm (load-tilemap
               (ly-write-map! "hide.tmx" 4 3
