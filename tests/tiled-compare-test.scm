@@ -210,6 +210,10 @@
     ;; without an alpha channel.
     (tc-compare "sticker-knight" (ex "sticker-knight/map/sandbox.tmx") hide: '("game")
                 region: '(1056 544 400 300) tolerance: 4)
+    ;; the second sandbox: 0.16 shading and 0.5 light layers, rotated and
+    ;; flipped tile objects
+    (tc-compare "sticker-knight-2" (ex "sticker-knight/map/sandbox2.tmx") hide: '("game")
+                region: '(800 440 480 320) tolerance: 4)
     ;; Isometric tiles overlap along translucent edges, which SDL and Qt
     ;; blend a few units apart: tolerance 4.
     (tc-compare "isometric" (ex "isometric_grass_and_water.tmx") region: '(704 320 192 128)
