@@ -333,6 +333,12 @@
               (tc-map! "trans" (tc-ortho "renderorder=\"right-down\"" 4 1 8 8)
                        (list (sprintf "<tileset firstgid=\"1\" name=\"k\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"4\" columns=\"4\"><image source=\"keyed.png\" trans=\"ff00ff\" width=\"32\" height=\"8\"/></tileset>"))
                        (list (tc-layer 1 "l" 4 1 '(1 2 3 4)))))
+  ;; and an image layer's trans colour, at half opacity
+  (tc-compare "trans-image-layer"
+              (tc-map! "trans-image-layer" (tc-ortho "renderorder=\"right-down\"" 5 2 8 8)
+                       '()
+                       (list "<imagelayer id=\"1\" name=\"k\" offsetx=\"3\" offsety=\"2\" opacity=\"0.5\"><image source=\"keyed.png\" trans=\"ff00ff\" width=\"32\" height=\"8\"/></imagelayer>"))
+              tolerance: 3)
   ;; an image without width and height: columns from the image itself
   (tc-compare "image-size"
               (tc-map! "image-size" (tc-ortho "renderorder=\"right-down\"" 4 2 8 8)
