@@ -119,7 +119,11 @@
            (dead (and target (camera-deadzone c)))
            (rate (camera-follow-rate c))
            (bounds (camera-bounds c))
-           (region (cond ((and (eq? bounds 'map) tilemap)
+           (region (cond ((and (eq? bounds 'map) tilemap
+                               (not (eq? (tilemap-orientation tilemap) 'orthogonal)))
+                          ;; the picture Tiled draws of the map
+                          (receive (w h) (tilemap-screen-size tilemap) (list 0 0 w h)))
+                         ((and (eq? bounds 'map) tilemap)
                           (list (* (tilemap-origin-col tilemap) (tilemap-tile-width tilemap))
                                 (* (tilemap-origin-row tilemap) (tilemap-tile-height tilemap))
                                 (tilemap-pixel-width tilemap) (tilemap-pixel-height tilemap)))

@@ -25,6 +25,7 @@
    default-engine-update run-engine-update!
    game-start! game-step!
    game-run! game-recording game-surface game-load-scene! game-load-tilesets! game-textures
+   load-tilemap-textures!
    game-add-state! game-state-set! game-current-state game-states
    game-frame-profile game-paused? game-resume! game-quit!)
 
@@ -295,6 +296,9 @@
   ;;; the game's input configuration anew (game-input-config-set!), and a
   ;;; pressed debug-overlay or fullscreen action, when the configuration
   ;;; has one, toggles the overlay or fullscreen before the engine update.
+  ;;; The scene is drawn at game time frames-run * frame-delay ms
+  ;;; (render-scene!'s time:), so the map's animated tiles play at the
+  ;;; durations Tiled gives them and a replay draws the same frames.
   ;;; A headless run with frames: N never sleeps: it runs exactly N logical
   ;;; frames back to back, each one rendered.
   ;;;
@@ -433,7 +437,9 @@
           (t0 (now-ms)))
       (if scene
           (render-scene! renderer scene textures: (game-textures game)
-                         debug?: (game-debug? game))
+                         debug?: (game-debug? game)
+                         ;; game time: animated map tiles follow the frames run
+                         time: (* (game-frame game) (game-frame-delay game)))
           (begin (render-draw-color-set! renderer 0 0 0)
                  (render-clear! renderer)))
       (let ((hook (active-render-hook game)))

@@ -4,7 +4,7 @@
 ;;; game-run! runs; (downstroke engine) offers it to games.
 
 (module (downstroke level)
-  (game-load-scene! game-load-tilesets!
+  (game-load-scene! game-load-tilesets! load-tilemap-textures!
    ;; for sibling modules only: the engine frees a game's textures when it stops
    free-textures!)
 
@@ -23,7 +23,10 @@
   ;;; tilesets) and every image layer's image, and makes a scene of them
   ;;; the game's scene, which it also returns. The scene's tileset-texture
   ;;; is the first tileset's texture (entity sprites); every texture is in
-  ;;; game-textures, which the frame loop passes to render-scene!. It needs
+  ;;; game-textures, which the frame loop passes to render-scene!. An
+  ;;; image's `trans` colour is keyed out of its texture. The scene's
+  ;;; background is background: when given, else the map's backgroundcolor
+  ;;; (else black). It needs
   ;;; the renderer, so it is called from a hook during game-run! (create:
   ;;; is the usual place). Loading another scene destroys the previous
   ;;; scene's textures (each is freed once); the rest are freed when
@@ -44,8 +47,9 @@
   ;;; the scene's map (tilemap-hide-layers: their objects are still listed
   ;;; by tilemap-objects), so a tile object is drawn once, as its entity.
   ;;;
-  ;;; Nothing is changed before the map has loaded, is known to be
-  ;;; orthogonal (another orientation is an error naming the file), its
+  ;;; Nothing is changed before the map has loaded, its orientation is
+  ;;; known to be drawable (orthogonal, isometric, staggered or hexagonal;
+  ;;; physics sees every map as an orthogonal grid: see docs/tilemaps.org), its
   ;;; objects are converted and every texture is loaded; a texture that
   ;;; fails to load frees the ones loaded before it.
 
@@ -54,29 +58,57 @@
     (game-textures-set! game '()))
 
   ;; Every image the map draws: tileset images, tile images of image
-  ;; collections, image layers' images; each path once, in that order.
-  (define (tilemap-image-paths tm)
-    (distinct-paths
-     (append (tileset-image-paths (tilemap-tilesets tm))
-             (map (lambda (l) (and (layer-image l) (image-source (layer-image l))))
-                  (tilemap-image-layers tm)))))
+  ;; collections, image layers' images; each once, in that order, as
+  ;; image records (their path and transparent colour).
+  (define (tilemap-images tm)
+    (distinct-images
+     (append (tileset-images (tilemap-tilesets tm))
+             (map layer-image (tilemap-image-layers tm)))))
 
   ;; A tileset's image, or its tiles' images for an image collection (#f
   ;; where a tile has none).
-  (define (tileset-image-paths tilesets)
+  (define (tileset-images tilesets)
     (append-map
      (lambda (ts)
        (let ((img (tileset-image ts)))
          (if img
-             (list (image-source img))
-             (map (lambda (t) (and (tile-image t) (image-source (tile-image t))))
-                  (tileset-tiles ts)))))
+             (list img)
+             (map tile-image (tileset-tiles ts)))))
      tilesets))
 
-  ;; The paths given (#f left out), each once, in their first order.
-  (define (distinct-paths ps) (delete-duplicates (filter string? ps)))
+  ;; The images with a path, each path once, in their first order (an
+  ;; image named twice is keyed out if any of its uses says so).
+  (define (distinct-images imgs)
+    (let* ((imgs (filter (lambda (i) (and i (string? (image-source i)))) imgs))
+           (paths (delete-duplicates (map image-source imgs))))
+      (map (lambda (p)
+             (let ((same (filter (lambda (i) (equal? (image-source i) p)) imgs)))
+               (or (find-first (lambda (i) (image-trans i)) same) (car same))))
+           paths)))
+
+  (define (find-first ok? l) (cond ((null? l) #f) ((ok? (car l)) (car l)) (else (find-first ok? (cdr l)))))
+
+  ;; The colour key of an image: its trans colour as (r g b), or #f.
+  (define (image-key img)
+    (let ((t (image-trans img)))
+      (and t (pair? t) (eq? (car t) 'color) (pair? (cdr t))
+           (list (cadr t) (caddr t) (cadddr t)))))
+
+  ;;; (load-tilemap-textures! renderer tilemap) loads a texture for every
+  ;;; image the map draws (tileset images, image collections' tile images,
+  ;;; image layers' images), with an image's `trans` colour keyed out, and
+  ;;; returns them as an alist (path . texture), what render-scene!'s
+  ;;; textures: takes. All are loaded or none: a failure frees the ones
+  ;;; loaded before it and raises. The caller owns the textures.
+  (define (load-tilemap-textures! r tm)
+    (load-textures! r (tilemap-images tm)))
 
   (define unset-key (list 'unset))
+
+  ;; The map's backgroundcolor as a scene background (r g b a), or #f.
+  (define (map-background tm)
+    (let ((c (tilemap-background-color tm)))
+      (and c (pair? c) (eq? (car c) 'color) (pair? (cdr c)) (cdr c))))
 
   (define (live-game-renderer who game what)
     (let ((r (game-renderer game)))
@@ -93,7 +125,7 @@
              (convert (if (eq? objects->entities unset-key) (and prefabs #t) objects->entities))
              (convert? (object-layer-selector 'game-load-scene! convert))
              (map-entities (tilemap-objects->entities tm prefabs: prefabs layers: convert?))
-             (textures (load-textures! r (tilemap-image-paths tm)))
+             (textures (load-textures! r (tilemap-images tm)))
              (first-ts (and (pair? (tilemap-tilesets tm)) (car (tilemap-tilesets tm))))
              (first-img (and first-ts (tileset-image first-ts)))
              (first-tex (and first-img (let ((p (assoc (image-source first-img) textures)))
@@ -104,7 +136,8 @@
                         tm))
              (scene (make-scene entities: (append map-entities entities)
                                 tilemap: shown tileset-texture: first-tex
-                                background: background camera: camera
+                                background: (or background (map-background tm))
+                                camera: camera
                                 camera-target: camera-target engine-update: engine-update)))
         (free-textures! game)
         (game-textures-set! game textures)
@@ -125,18 +158,18 @@
                                   (sprintf "~a tileset~a" (length tilesets)
                                            (if (= 1 (length tilesets)) "" "s"))))
            (have (game-textures game))
-           (paths (filter (lambda (p) (not (assoc p have)))
-                          (distinct-paths (tileset-image-paths tilesets)))))
-      (game-textures-set! game (append have (load-textures! r paths)))
+           (imgs (filter (lambda (i) (not (assoc (image-source i) have)))
+                         (distinct-images (tileset-images tilesets)))))
+      (game-textures-set! game (append have (load-textures! r imgs)))
       tilesets))
 
-  ;; (path . texture) for each path; on a failure the ones loaded are freed.
-  (define (load-textures! r paths)
-    (let loop ((ps paths) (out '()))
-      (if (null? ps)
+  ;; (path . texture) for each image; on a failure the ones loaded are freed.
+  (define (load-textures! r imgs)
+    (let loop ((is imgs) (out '()))
+      (if (null? is)
           (reverse out)
           (let ((tex (handle-exceptions exn
                          (begin (for-each (lambda (p) (destroy-texture! (cdr p))) out)
                                 (signal exn))
-                       (img-load-texture! r (car ps)))))
-            (loop (cdr ps) (cons (cons (car ps) tex) out)))))))
+                       (img-load-texture! r (image-source (car is)) (image-key (car is))))))
+            (loop (cdr is) (cons (cons (image-source (car is)) tex) out)))))))

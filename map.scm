@@ -56,6 +56,7 @@
    make-tilemap list->tilemap tilemap?
    tilemap-width tilemap-height tilemap-tile-width tilemap-tile-height
    tilemap-pixel-width tilemap-pixel-height tilemap-origin-col tilemap-origin-row
+   tilemap-screen-size tilemap-cell-anchor tilemap-screen-point
    tilemap-layers tilemap-layer tilemap-properties
    tilemap-tile-at tilemap-cell-at tilemap-flags-at tilemap-solid? tilemap-one-way? tilemap-solid-grid
    ;; map attributes
@@ -345,10 +346,14 @@
 
   ;; Where a tile object's image hangs from its (x, y): the fractions of
   ;; its width and height left of and above that point, (values ax ay).
-  ;; Tiled's default (unspecified) for orthogonal maps is bottom-left.
+  ;; Tiled's default (unspecified) is bottom-left, bottom-centre on
+  ;; isometric maps.
   (define (tilemap-object-anchor tm object)
     (let* ((ts (tilemap-tileset-for tm (object-cell object)))
-           (align (if ts (tileset-object-alignment ts) 'unspecified)))
+           (align (if ts (tileset-object-alignment ts) 'unspecified))
+           (align (if (and (eq? align 'unspecified) (eq? (tilemap-orientation tm) 'isometric))
+                      'bottom
+                      align)))
       (case align
         ((top-left) (values 0 0)) ((top) (values 1/2 0)) ((top-right) (values 1 0))
         ((left) (values 0 1/2)) ((center) (values 1/2 1/2)) ((right) (values 1 1/2))
@@ -491,6 +496,82 @@
       (make-tilemap width height tile-width tile-height
                     (list (make-layer name width height data))
                     one-way: one-way)))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Where Tiled draws things, for every orientation (the renderer and the
+  ;;; camera's map bounds use these; physics stays on the orthogonal grid).
+
+  (define (info-height tm) (tilemap-height tm))
+
+  ;; Tiled's hexagonal parameters (staggered maps are hexagonal maps with
+  ;; a side length of 0): a vector
+  ;;   #(tw th side-x side-y stagger-x? stagger-even? column-width row-height side-offset-x side-offset-y)
+  (define (hex-params tm)
+    (let* ((tw (bitwise-and (tilemap-tile-width tm) (bitwise-not 1)))
+           (th (bitwise-and (tilemap-tile-height tm) (bitwise-not 1)))
+           (hex? (eq? (tilemap-orientation tm) 'hexagonal))
+           (stagger-x? (eq? (tilemap-stagger-axis tm) 'x))
+           (even? (eq? (tilemap-stagger-index tm) 'even))
+           (side (if hex? (or (tilemap-hex-side-length tm) 0) 0))
+           (side-x (if stagger-x? side 0))
+           (side-y (if stagger-x? 0 side))
+           (off-x (quotient (- tw side-x) 2))
+           (off-y (quotient (- th side-y) 2)))
+      (vector tw th side-x side-y stagger-x? even? (+ off-x side-x) (+ off-y side-y) off-x off-y)))
+
+  (define (staggered? p i) (not (eq? (odd? i) (vector-ref p 5))))
+
+  ;; Where Tiled draws cell (col, row): the bottom-left corner of its
+  ;; image, before the tileset's <tileoffset>, in the map's screen pixels
+  ;; (the picture Tiled draws, top-left (0, 0)); (values x y).
+  (define (tilemap-cell-anchor tm col row)
+    (let ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)))
+      (case (tilemap-orientation tm)
+        ((isometric)
+         (values (+ (/ (* (- col row) tw) 2) (/ (* (info-height tm) tw) 2) (- (/ tw 2)))
+                 (+ (/ (* (+ col row) th) 2) th)))
+        ((staggered hexagonal)
+         (let ((p (hex-params tm)))
+           (if (vector-ref p 4)           ; stagger axis x
+               (values (* col (vector-ref p 6))
+                       (+ (* row (+ (vector-ref p 1) (vector-ref p 3)))
+                          (if (staggered? p col) (vector-ref p 7) 0)
+                          (vector-ref p 1)))
+               (values (+ (* col (+ (vector-ref p 0) (vector-ref p 2)))
+                          (if (staggered? p row) (vector-ref p 6) 0))
+                       (+ (* row (vector-ref p 7)) (vector-ref p 1))))))
+        (else (values (* col tw) (* (+ row 1) th))))))
+
+  ;; The size of the picture Tiled draws of the map (its renderer's map
+  ;; size, before layer offsets): (values width height). The map's pixel
+  ;; size on orthogonal maps.
+  (define (tilemap-screen-size tm)
+    (let ((w (tilemap-width tm)) (h (tilemap-height tm))
+          (tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)))
+      (case (tilemap-orientation tm)
+        ((isometric) (values (/ (* (+ w h) tw) 2) (/ (* (+ w h) th) 2)))
+        ((staggered hexagonal)
+         (let ((p (hex-params tm)))
+           (if (vector-ref p 4)
+               (values (+ (* w (vector-ref p 6)) (vector-ref p 8))
+                       (+ (* h (+ (vector-ref p 1) (vector-ref p 3)))
+                          (if (> w 1) (vector-ref p 7) 0)))
+               (values (+ (* w (+ (vector-ref p 0) (vector-ref p 2)))
+                          (if (> h 1) (vector-ref p 6) 0))
+                       (+ (* h (vector-ref p 7)) (vector-ref p 9))))))
+        (else (values (* w tw) (* h th))))))
+
+  ;; A map position (x, y) in pixels (an object's) as a screen point:
+  ;; isometric maps project it ((x / th, y / th) as cell coordinates), the
+  ;; others draw it where it is; (values sx sy).
+  (define (tilemap-screen-point tm x y)
+    (if (eq? (tilemap-orientation tm) 'isometric)
+        (let* ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm))
+               (cx (/ x th)) (cy (/ y th)))
+          (values (+ (/ (* (- cx cy) tw) 2) (/ (* (info-height tm) tw) 2))
+                  (/ (* (+ cx cy) th) 2)))
+        (values x y)))
+
 
   (define (tilemap-pixel-width tm) (* (tilemap-width tm) (tilemap-tile-width tm)))
   (define (tilemap-pixel-height tm) (* (tilemap-height tm) (tilemap-tile-height tm)))

@@ -1,39 +1,15 @@
 ;;; (downstroke renderer): drawing a scene with an SDL renderer.
 ;;;
-;;;   (render-scene! renderer scene #!key view-width view-height textures debug?)
+;;;   (render-scene! renderer scene #!key view-width view-height textures debug? time)
 ;;;
 ;;; draws, in this order:
 ;;;   1. the whole target cleared to the scene's background, a list
 ;;;      (r g b [a]) of 0..255 values; black when the background is #f;
-;;;   2. every visible layer of the scene's tilemap, in the map's order
-;;;      (Tiled's: a group's children where the group is), each through
-;;;      its layer camera (parallax and offset, below), with its opacity
-;;;      and tint as the textures' alpha and colour modulation (reset to
-;;;      none afterwards). A layer's tint is its tintcolor multiplied by
-;;;      its groups' tints; a tint's alpha multiplies the opacity.
-;;;      - tile layers: only the cells that the view touches are drawn: a
-;;;        cell partly inside the view at any edge is drawn. A cell's image
-;;;        comes from the tileset covering its gid (columns, spacing,
-;;;        margin; image-collection tilesets use each tile's own image),
-;;;        moved by the tileset's <tileoffset>, and its flip flags are
-;;;        honoured (horizontal, vertical, and diagonal, the last as a 90
-;;;        degree rotation, exact for square tiles). A tile whose tileset
-;;;        tiles are taller than the map's cells is drawn bottom-aligned to
-;;;        its cell, as Tiled does;
-;;;      - image layers: the layer's image at the layer's offset, at its own
-;;;        size; repeatx / repeaty repeat it along that axis across the
-;;;        whole view;
-;;;      - object layers: the visible tile objects (those with a gid), each
-;;;        the tile's image stretched over the object's box
-;;;        (tilemap-object-box: hung from its anchor, bottom-left unless
-;;;        the tileset's objectalignment says otherwise), flipped by its
-;;;        horizontal / vertical flags, rotated by its rotation (degrees
-;;;        clockwise) about its anchor point; in the layer's draw order
-;;;        (topdown: by y, ties in file order; index: file order). Other
-;;;        shapes are drawn only by the debug overlay;
-;;;      Only orthogonal maps are drawn: another orientation is an error
-;;;      "unsupported orientation isometric in FILE: only orthogonal maps
-;;;      are drawn", raised before anything is drawn;
+;;;   2. every visible layer of the scene's tilemap, as Tiled 1.8 draws it:
+;;;      (downstroke mapdraw)'s render-map-layers! (tile, image and object
+;;;      layers; parallax, offsets, opacity, tints; every orientation;
+;;;      animated tiles at `time` ms, default 0, which game-run! sets to the
+;;;      game time);
 ;;;   3. the entities, in list order: with #:tile-id, that tile of the
 ;;;      scene's tileset (scene-tileset, else the tilemap's first tileset)
 ;;;      from scene-tileset-texture (else the texture `textures` gives for
@@ -60,7 +36,8 @@
 ;;; The layer camera. A layer with parallax factors (px, py) (Tiled's
 ;;; parallaxx / parallaxy, multiplied through groups) in a map whose
 ;;; parallax origin is (ox, oy) is seen through
-;;;     lx = ox + (camera-x - ox) * px - offset-x    (ly likewise)
+;;;     lx = ox + (camera-x - ox) * px - round(offset-x)    (ly likewise)
+;;; (an offset rounded to whole pixels half up, as Tiled draws it)
 ;;; so it moves px pixels for each pixel the camera moves (0: fixed on the
 ;;; screen, 1: with the map) and sits at its own offset whenever the camera
 ;;; is at the parallax origin. Tiled's editor previews parallax about the
@@ -81,7 +58,8 @@
 ;;; The debug overlay. (render-debug-overlay! renderer scene #!key
 ;;; view-width view-height velocity-scale), which render-scene! calls last
 ;;; when given `debug?: #t`, draws first, with a tilemap, the outline of
-;;; the box (tilemap-object-box) of every visible object of every visible
+;;; the box (object-screen-box: tilemap-object-box, projected on isometric
+;;; maps) of every visible object of every visible
 ;;; object layer, through its layer camera, in *debug-object-color*
 ;;; (magenta): rectangles, ellipses, text, polygons (their points' bounding
 ;;; box) and tile objects alike, a point as one pixel, rotation ignored.
@@ -103,10 +81,8 @@
 ;;; hitbox and velocity line drawn in *debug-warning-color* (red) instead.
 ;;; Outlines are one pixel wide, drawn inside the rectangle (SDL's draw-rect).
 ;;;
-;;; Not drawn: shapes other than tile objects (except as debug outlines),
-;;; text objects, an image layer's transparent colour (trans), and
-;;; isometric, staggered and hexagonal maps (refused, see above). Entities
-;;; are drawn above every layer of the map.
+;;; Not drawn: shapes other than tile objects (except as debug outlines)
+;;; and text objects. Entities are drawn above every layer of the map.
 
 (module (downstroke renderer)
   (render-scene! render-map-layers! render-entities! render-entity!
@@ -120,13 +96,8 @@
   (import (downstroke keywords) (only (downstroke check) report-entity-problems!))
   (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
           (downstroke sdl2) (downstroke entity) (downstroke scene)
-          (downstroke map)
+          (downstroke map) (downstroke mapdraw)
           (only (downstroke physics) entity-cell-span tunnel-risk?))
-
-  ;; The rounding rule (see above): world coordinate -> whole screen pixel.
-  (define (screen-coordinate x camera)
-    (let ((v (floor (- x camera))))
-      (if (exact? v) v (inexact->exact v))))
 
   ;; The texture for an image path, from a procedure or an alist; #f if none.
   (define (lookup-texture textures path)
@@ -134,31 +105,6 @@
           ((procedure? textures) (textures path))
           ((list? textures) (let ((p (assoc path textures))) (and p (cdr p))))
           (else (error 'render-scene! "textures: must be a procedure or an alist" textures))))
-
-  ;; The pixel rectangle of local tile `local` in a tileset image:
-  ;; (values x y w h), from the tileset's columns, spacing and margin.
-  (define (tileset-source-rect ts local)
-    (let* ((tw (tileset-tile-width ts))
-           (th (tileset-tile-height ts))
-           (cols (max 1 (or (tileset-columns ts) 1)))
-           (sp (or (tileset-spacing ts) 0))
-           (mg (or (tileset-margin ts) 0)))
-      (values (+ mg (* (modulo local cols) (+ tw sp)))
-              (+ mg (* (quotient local cols) (+ th sp)))
-              tw th)))
-
-  ;; Copy with Tiled's flip flags: diagonal (a transpose, applied first),
-  ;; then horizontal, then vertical. SDL flips before it rotates, so the
-  ;; transpose followed by h/v flips equals a 90 degree clockwise rotation
-  ;; of the image flipped horizontally when v is set and vertically when h
-  ;; is not.
-  (define (copy-flipped! r tex src dst h? v? d?)
-    (if d?
-        (render-copy! r tex src dst
-                      angle: 90
-                      flip: (append (if v? '(horizontal) '()) (if h? '() '(vertical))))
-        (render-copy! r tex src dst
-                      flip: (append (if h? '(horizontal) '()) (if v? '(vertical) '())))))
 
   (define (background-color bg)
     (cond ((not bg) '(0 0 0 255))
@@ -176,227 +122,6 @@
               (values (or vw lw) (or vh lh))
               (receive (ow oh) (renderer-output-size r)
                 (values (or vw ow) (or vh oh)))))))
-
-;;; ------------------------------------------------------------------
-  ;;; Map layers
-
-  ;; Everything needed to draw one gid: (values texture sx sy sw sh), with
-  ;; texture #f when the gid belongs to no tileset or tile. `tex-for` maps
-  ;; (tileset path) to a texture or raises.
-  (define (gid-image tm gid tex-for)
-    (let ((ts (tilemap-tileset-for tm gid)))
-      (if (not ts)
-          (values #f 0 0 0 0)
-          (let ((local (- gid (tileset-first-gid ts))))
-            (if (tileset-image ts)
-                (receive (sx sy sw sh) (tileset-source-rect ts local)
-                  (values (tex-for ts (image-source (tileset-image ts))) sx sy sw sh))
-                ;; an image collection: the tile's own image
-                (let* ((tile (tileset-tile ts local))
-                       (img (and tile (tile-image tile))))
-                  (if (not img)
-                      (values #f 0 0 0 0)
-                      (let ((tex (tex-for ts (image-source img))))
-                        (receive (iw ih) (texture-size tex)
-                          (values tex (tile-x tile) (tile-y tile)
-                                  (or (tile-width tile) iw)
-                                  (or (tile-height tile) ih)))))))))))
-
-  ;; The camera a layer is seen through, its parallax and offset folded in:
-  ;; (values lx ly), so that a point (x, y) of the layer is drawn at
-  ;; (floor(x - lx), floor(y - ly)). With the map's parallax origin (ox, oy)
-  ;; and the layer's factors (px, py):
-  ;;     lx = ox + (camera-x - ox) * px - offset-x
-  ;; so a layer moves px pixels for each pixel the camera moves, and every
-  ;; layer is at its own offset when the camera is at the parallax origin.
-  (define (layer-camera tm layer cx cy)
-    (let ((ox (tilemap-parallax-origin-x tm)) (oy (tilemap-parallax-origin-y tm)))
-      (values (- (+ ox (* (- cx ox) (layer-parallax-x layer))) (layer-offset-x layer))
-              (- (+ oy (* (- cy oy) (layer-parallax-y layer))) (layer-offset-y layer)))))
-
-  ;; Tints are (r g b a) lists; a group's tint multiplies its children's.
-  (define no-tint '(255 255 255 255))
-
-  (define (tint-components t)
-    (cond ((not t) no-tint)
-          ((and (pair? t) (eq? (car t) 'color))
-           (if (null? (cdr t)) no-tint (tint-components (cdr t))))
-          ((and (list? t) (= (length t) 3)) (append t '(255)))
-          (else t)))
-
-  (define (tint* a b)
-    (map (lambda (x y) (quotient (+ (* x y) 127) 255)) a (tint-components b)))
-
-  ;; Draws with every texture of a layer colour- and alpha-modulated by the
-  ;; layer's tint and opacity: (with-layer-mods tint opacity draw) calls
-  ;; (draw prepare!), where (prepare! texture) sets the modulation on a
-  ;; texture before its first use; afterwards every texture touched is
-  ;; reset to no modulation (textures are shared with the sprites).
-  (define (with-layer-mods tint opacity draw)
-    (let* ((alpha (inexact->exact (round (* (cadddr tint) (max 0 (min 1 opacity))))))
-           (rgb (list (car tint) (cadr tint) (caddr tint)))
-           (touched '())
-           (prepare! (lambda (tex)
-                       (unless (memq tex touched)
-                         (set! touched (cons tex touched))
-                         (texture-alpha-mod-set! tex alpha)
-                         (apply texture-color-mod-set! tex rgb)))))
-      (when (> alpha 0)
-        (dynamic-wind
-         void
-         (lambda () (draw prepare!))
-         (lambda ()
-           (for-each (lambda (tex)
-                       (when (texture-alive? tex)
-                         (texture-alpha-mod-set! tex 255)
-                         (texture-color-mod-set! tex 255 255 255)))
-                     touched))))))
-
-  ;; One tile layer: only the cells that the view vw x vh touches.
-  (define (draw-tile-layer! r tm layer cx cy vw vh tex-for prepare!)
-    (let ((tw (tilemap-tile-width tm))
-          (th (tilemap-tile-height tm))
-          (col0 (tilemap-origin-col tm))
-          (row0 (tilemap-origin-row tm))
-          (width (tilemap-width tm))
-          (data (layer-data layer))
-          ;; <tileoffset>s are rare: look the tileset up again only then
-          (offsets? (let loop ((tss (tilemap-tilesets tm)))
-                      (and (pair? tss)
-                           (or (not (zero? (tileset-offset-x (car tss))))
-                               (not (zero? (tileset-offset-y (car tss))))
-                               (loop (cdr tss)))))))
-      (receive (lx ly) (layer-camera tm layer cx cy)
-        ;; cells whose span [c*tw, (c+1)*tw) meets [lx, lx+vw)
-        (let ((c-min (max col0 (floor-int (/ lx tw))))
-              (c-max (min (+ col0 width -1) (- (ceiling-int (/ (+ lx vw) tw)) 1)))
-              (r-min (max row0 (floor-int (/ ly th))))
-              (r-max (min (+ row0 (tilemap-height tm) -1) (- (ceiling-int (/ (+ ly vh) th)) 1))))
-          (do ((row r-min (+ row 1))) ((> row r-max))
-            (do ((col c-min (+ col 1))) ((> col c-max))
-              (let ((cell (u32vector-ref data (+ (* (- row row0) width) (- col col0)))))
-                (unless (zero? (cell-gid cell))
-                  (receive (tex sx sy sw sh) (gid-image tm (cell-gid cell) tex-for)
-                    (when tex
-                      (prepare! tex)
-                      (let ((ts (and offsets? (tilemap-tileset-for tm cell))))
-                        (copy-flipped!
-                         r tex (make-rect sx sy sw sh)
-                         (make-rect (screen-coordinate (+ (* col tw) (if ts (tileset-offset-x ts) 0)) lx)
-                                    ;; taller tiles stand on their cell's bottom
-                                    (screen-coordinate (+ (* row th) (- th sh) (if ts (tileset-offset-y ts) 0))
-                                                       ly)
-                                    sw sh)
-                         (cell-flipped-horizontally? cell)
-                         (cell-flipped-vertically? cell)
-                         (cell-flipped-diagonally? cell)))))))))))))
-
-  ;; The screen positions at which copies of a span of `size` pixels
-  ;; starting at `start` are drawn to cover [0, view) when repeated, or
-  ;; just `start` when not.
-  (define (repeat-positions start size view repeat?)
-    (if (or (not repeat?) (<= size 0))
-        (list start)
-        (let ((first (let ((m (modulo start size))) (if (> m 0) (- m size) m))))
-          (let loop ((p first) (out '()))
-            (if (>= p view) (reverse out) (loop (+ p size) (cons p out)))))))
-
-  ;; One image layer: its image at the layer's offset, repeated across the
-  ;; view along an axis marked repeatx / repeaty.
-  (define (draw-image-layer! r tm layer cx cy vw vh tex-for prepare!)
-    (let ((img (layer-image layer)))
-      (when (and img (image-source img))
-        (let ((tex (tex-for layer (image-source img))))
-          (prepare! tex)
-          (receive (iw ih) (texture-size tex)
-            (receive (lx ly) (layer-camera tm layer cx cy)
-              (for-each
-               (lambda (y)
-                 (for-each
-                  (lambda (x) (render-copy! r tex #f (make-rect x y iw ih)))
-                  (repeat-positions (screen-coordinate 0 lx) iw vw (layer-repeat-x? layer))))
-               (repeat-positions (screen-coordinate 0 ly) ih vh (layer-repeat-y? layer)))))))))
-
-  (define pi (* 4 (atan 1)))
-
-  ;; Exact for multiples of 90 degrees, so quarter turns land on whole pixels.
-  (define (sine degrees)
-    (let ((d (and (exact? degrees) (integer? degrees) (modulo degrees 360))))
-      (case d
-        ((0 180) 0) ((90) 1) ((270) -1)
-        (else (if (and (not d) (integer? degrees) (zero? (modulo degrees 90)))
-                  (sine (inexact->exact degrees))
-                  (sin (/ (* degrees pi) 180)))))))
-  (define (cosine degrees) (sine (+ degrees 90)))
-
-  ;; One object layer: its visible tile objects, each the tile's image
-  ;; stretched over the object's box (tilemap-object-box), flipped by its
-  ;; flags and rotated by its rotation about its anchor point (x, y), in
-  ;; the layer's draw order (topdown: by y, index: as written). Other shapes
-  ;; are drawn only by the debug overlay.
-  (define (draw-object-layer! r tm layer cx cy tex-for prepare!)
-    (receive (lx ly) (layer-camera tm layer cx cy)
-      (for-each
-       (lambda (o)
-         (when (and (object-visible? o) (eq? (object-shape o) 'tile))
-           (receive (tex sx sy sw sh) (gid-image tm (object-gid o) tex-for)
-             (when tex
-               (prepare! tex)
-               (receive (bx by bw bh) (tilemap-object-box tm o)
-                 (let* ((angle (object-rotation o))
-                        ;; the box's centre, turned about the anchor
-                        (px (object-x o)) (py (object-y o))
-                        (dx (- (+ bx (/ bw 2)) px)) (dy (- (+ by (/ bh 2)) py))
-                        (mx (+ px (- (* dx (cosine angle)) (* dy (sine angle)))))
-                        (my (+ py (* dx (sine angle)) (* dy (cosine angle))))
-                        (x0 (screen-coordinate (- mx (/ bw 2)) lx))
-                        (y0 (screen-coordinate (- my (/ bh 2)) ly))
-                        (x1 (screen-coordinate (+ mx (/ bw 2)) lx))
-                        (y1 (screen-coordinate (+ my (/ bh 2)) ly))
-                        (cell (object-cell o))
-                        (h? (cell-flipped-horizontally? cell))
-                        (v? (cell-flipped-vertically? cell)))
-                   (when (and (> x1 x0) (> y1 y0))
-                     (render-copy! r tex (make-rect sx sy sw sh)
-                                   (make-rect x0 y0 (- x1 x0) (- y1 y0))
-                                   angle: angle
-                                   flip: (append (if h? '(horizontal) '())
-                                                 (if v? '(vertical) '()))))))))))
-       (if (eq? (layer-draw-order layer) 'index)
-           (layer-objects layer)
-           (sort (layer-objects layer) (lambda (a b) (< (object-y a) (object-y b))))))))
-
-  ;; Every visible layer of the map, in the map's order (Tiled's, groups'
-  ;; children where the group is), through a camera at (cx, cy) and a view
-  ;; of vw x vh pixels. `tex-for` is (owner path) -> texture, owner the
-  ;; tileset or the image layer needing it.
-  (define (render-map-layers! r tm cx cy vw vh tex-for)
-    (let walk ((layers (tilemap-layer-tree tm)) (tint no-tint))
-      (for-each
-       (lambda (layer)
-         (let ((tint (tint* tint (layer-tint layer))))
-           (if (eq? (layer-kind layer) 'group)
-               (walk (layer-children layer) tint)
-               (when (and (layer-visible? layer) (> (layer-opacity layer) 0))
-                 (with-layer-mods
-                  tint (layer-opacity layer)
-                  (lambda (prepare!)
-                    (case (layer-kind layer)
-                      ((tile) (draw-tile-layer! r tm layer cx cy vw vh tex-for prepare!))
-                      ((image) (draw-image-layer! r tm layer cx cy vw vh tex-for prepare!))
-                      ((object) (draw-object-layer! r tm layer cx cy tex-for prepare!))
-                      (else (void)))))))))
-       layers)))
-
-  ;; Only orthogonal maps are drawn; the error names the map's file.
-  (define (check-map-orientation who tm)
-    (let ((o (tilemap-orientation tm)))
-      (unless (eq? o 'orthogonal)
-        (error who (sprintf "unsupported orientation ~a in ~a: only orthogonal maps are drawn"
-                            o (or (tilemap-source tm) "a map made in code"))))))
-
-  (define (floor-int x) (let ((v (floor x))) (if (exact? v) v (inexact->exact v))))
-  (define (ceiling-int x) (let ((v (ceiling x))) (if (exact? v) v (inexact->exact v))))
 
   ;;; ------------------------------------------------------------------
   ;;; Entities
@@ -513,7 +238,7 @@
                  (for-each
                   (lambda (o)
                     (when (object-visible? o)
-                      (receive (x y w h) (tilemap-object-box tm o)
+                      (receive (x y w h) (object-screen-box tm o)
                         (if (and (> w 0) (> h 0))
                             (outline! r x y w h lx ly)
                             (outline! r x y 1 1 lx ly)))))
@@ -564,7 +289,7 @@
           (else (filter keep? (cdr l)))))
 
   (define/keywords (render-scene! r scene #!key (view-width #f) (view-height #f) (textures #f)
-                         (debug? #f))
+                         (debug? #f) (time 0))
     (let* ((camera (scene-camera scene))
            (cx (if camera (camera-x camera) 0))
            (cy (if camera (camera-y camera) 0))
@@ -593,7 +318,7 @@
           (with-zoom r (if camera (camera-zoom camera) 1)
             (lambda (zoom)
               (let ((vw (/ vw zoom)) (vh (/ vh zoom)))
-                (when tm (render-map-layers! r tm cx cy vw vh tex-for))
+                (when tm (render-map-layers! r tm cx cy vw vh tex-for time))
                 (render-entities! r (scene-entities scene) cx cy sprite-tileset
                                   (or (scene-tileset-texture scene)
                                       (and sprite-tileset (tileset-image sprite-tileset)

@@ -69,7 +69,7 @@
    render-present! render-read-pixels
    ;; textures
    img-load-texture! destroy-texture! texture? texture-alive? texture-size max-image-pixels
-   texture-alpha-mod-set! texture-alpha-mod
+   texture-alpha-mod-set! texture-alpha-mod texture-blend-mode-set!
    texture-color-mod-set! texture-color-mod
    ;; surfaces
    create-rgba-surface! free-surface! surface? surface-alive? surface-size
@@ -767,11 +767,28 @@ EOF
         (too-many-pixels who path (car size) (cadr size)))))
 
   ;; A texture from an image file (PNG and whatever else SDL_image reads).
-  (define (img-load-texture! r path)
+  ;; key: #f, or a colour (r g b) drawn transparent (Tiled's `trans`): the
+  ;; image is read into a surface, the colour keyed out, then uploaded.
+  (define (img-load-texture! r path #!optional (key #f))
     (unless (string? path) (error 'img-load-texture! "the path must be a string" path))
     (check-image-header 'img-load-texture! path)
+    (when key
+      (unless (and (list? key) (= 3 (length key)))
+        (error 'img-load-texture! "the colour key must be (r g b)" key))
+      (for-each (lambda (c) (byte 'img-load-texture! c)) key))
     (let* ((rp (live-renderer 'img-load-texture! r))
-           (p ((foreign-lambda c-pointer "IMG_LoadTexture" c-pointer c-string) rp path)))
+           (p (if key
+                  ((foreign-lambda* c-pointer ((c-pointer r) (c-string path)
+                                               (unsigned-byte kr) (unsigned-byte kg) (unsigned-byte kb))
+                     "SDL_Surface *s = IMG_Load(path); SDL_Texture *t = NULL;
+                      if (s) {
+                        if (SDL_SetColorKey(s, SDL_TRUE, SDL_MapRGB(s->format, kr, kg, kb)) == 0)
+                          t = SDL_CreateTextureFromSurface((SDL_Renderer*)r, s);
+                        SDL_FreeSurface(s);
+                      }
+                      C_return(t);")
+                   rp path (car key) (cadr key) (caddr key))
+                  ((foreign-lambda c-pointer "IMG_LoadTexture" c-pointer c-string) rp path))))
       (unless p (sdl-error 'img-load-texture! "IMG_LoadTexture"
                            (sprintf "cannot load ~s" path)))
       (set! count-textures (+ count-textures 1))
@@ -804,6 +821,15 @@ EOF
                       ((foreign-lambda int "SDL_GetTextureAlphaMod" c-pointer (c-pointer unsigned-byte))
                        p (location a)))
         a)))
+
+  ;; How the texture's pixels combine with what is drawn: none, blend, add
+  ;; or mod. An image without an alpha channel loads as none, which ignores
+  ;; the alpha modulation; a translucent layer sets blend.
+  (define (texture-blend-mode-set! t mode)
+    (check-status 'texture-blend-mode-set! "SDL_SetTextureBlendMode"
+                  ((foreign-lambda int "SDL_SetTextureBlendMode" c-pointer int)
+                   (live-texture 'texture-blend-mode-set! t)
+                   (blend-mode 'texture-blend-mode-set! mode))))
 
   ;; red, green, blue: 0..255, multiplied into the colour of every pixel
   ;; the texture draws (255 255 255 leaves it unchanged).

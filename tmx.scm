@@ -14,7 +14,7 @@
 (module (downstroke tmx)
   (load-tilemap tilemap-max-cells tilemap-max-depth load-tileset)
 
-  (import (downstroke keywords) (only (downstroke media-header) file-problem))
+  (import (downstroke keywords) (only (downstroke media-header) file-problem image-file-size))
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
           (chicken string) (chicken file) srfi-4
@@ -301,10 +301,17 @@
         (when path (check-exists ctx path "image"))
         (unless (or path (x-child node 'data))
           (tmx-error (ctx-file ctx) "~a: <image> has neither a source nor data" (ctx-what ctx)))
-        (make-image path
-                    (attr-int ctx node 'width #f 0)
-                    (attr-int ctx node 'height #f 0)
-                    (attr-color ctx node 'trans)))))
+        ;; width and height are optional: Tiled then reads the image's
+        ;; own size, which the header of a PNG, JPEG, GIF, BMP, QOI or WebP
+        ;; gives (another format stays #f and the renderer counts columns
+        ;; from the loaded texture)
+        (let* ((w (attr-int ctx node 'width #f 0))
+               (h (attr-int ctx node 'height #f 0))
+               (size (and path (not (and w h)) (image-file-size path))))
+          (make-image path
+                      (or w (and size (car size)))
+                      (or h (and size (cadr size)))
+                      (attr-color ctx node 'trans))))))
 
   (define (parse-animation ctx node)
     (let ((anim (x-child node 'animation)))
@@ -776,9 +783,16 @@
                          (lambda (out) (each (cdr children) out)))))
                 (else (each (cdr children) out))))))))
 
+  ;; Tiled still reads an image layer's old x and y attributes as its
+  ;; offset when it has neither offsetx nor offsety.
+  (define (legacy-offset ctx node axis)
+    (if (and (eq? (car node) 'imagelayer) (not (x-attr node 'offsetx)) (not (x-attr node 'offsety)))
+        (attr-number ctx node axis 0)
+        0))
+
   (define (compose-inherited ctx node inh)
-    (make-inherited (+ (in-offset-x inh) (attr-number ctx node 'offsetx 0))
-                    (+ (in-offset-y inh) (attr-number ctx node 'offsety 0))
+    (make-inherited (+ (in-offset-x inh) (attr-number ctx node 'offsetx (legacy-offset ctx node 'x)))
+                    (+ (in-offset-y inh) (attr-number ctx node 'offsety (legacy-offset ctx node 'y)))
                     (* (in-parallax-x inh) (attr-number ctx node 'parallaxx 1))
                     (* (in-parallax-y inh) (attr-number ctx node 'parallaxy 1))
                     (* (in-opacity inh) (attr-number ctx node 'opacity 1))

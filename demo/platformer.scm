@@ -91,8 +91,7 @@
                (e (exn) (print "platformer: no sound (" (get-condition-property e 'exn 'message) ")")))
              (let* ((scene (game-load-scene! game "demo/levels/platformer.tmx"
                                              entities: (list platform lift player)
-                                             camera: camera
-                                             background: '(92 148 252)))
+                                             camera: camera))
                     (sprites (cadr (tilemap-tilesets (scene-tilemap scene)))))
                ;; entities draw their #:tile-id from the sprite sheet
                (game-scene-set! game (update-scene scene tileset: sprites

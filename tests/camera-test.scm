@@ -59,6 +59,15 @@
                  (< (abs (- (camera-x last) (- (+ 260 (* 1999 3/7)) 160))) 10))))
 
 (test-group "camera: bounds"
+  ;; an isometric map of 40 x 30 cells of 32 x 16 is drawn (40 + 30) * 16
+  ;; by (40 + 30) * 8 = 1120 x 560 pixels: 'map keeps the view in that
+  (let* ((ortho (list->tilemap (cm-repeat 30 (cm-repeat 40 0)) tile-width: 32 tile-height: 16))
+         (iso (make-tilemap 40 30 32 16 (tilemap-layers ortho)
+                            info: '((orientation . isometric)))))
+    (test "'map on an isometric map: the picture Tiled draws of it" '(800 320)
+          (cm-xy (camera-follow (make-camera) (cm-target 2000 2000) 320 240 iso)))
+    (test "'map on an orthogonal map of the same cells: its pixel size" '(960 240)
+          (cm-xy (camera-follow (make-camera) (cm-target 2000 2000) 320 240 ortho))))
   (let ((tm (list->tilemap (cm-repeat 30 (cm-repeat 40 0)))))   ; 640 x 480 px
     (test "'map (the default) keeps the view in the map" '(320 240)
           (cm-xy (camera-follow (make-camera) (cm-target 630 470) 320 240 tm)))

@@ -336,20 +336,43 @@
     (test "without debug?: shapes are not drawn" ly-bg (px 2 3))))
 
 (test-group "layers: orientations other than orthogonal"
-  (for-each
-   (lambda (o)
-     (let ((path (ly-write-map! (string-append o ".tmx") 4 3 (ly-tile-layer "t" 4 3 "" '(0 0 2))
-                                orientation: o
-                                map-attrs: (if (equal? o "orthogonal") ""
-                                               "staggeraxis=\"y\" staggerindex=\"odd\" hexsidelength=\"4\""))))
-       (test-error (string-append "render-scene! refuses a " o " map, naming the file")
-                   (lambda (e) (substring-index
-                                (sprintf "unsupported orientation ~a in ~a: only orthogonal maps are drawn"
-                                         o path)
-                                (error-text e)))
-                   (render-scene! ly-renderer (make-scene tilemap: (load-tilemap path))
-                                  textures: ly-textures))))
-   '("isometric" "staggered" "hexagonal")))
+  ;; gid 2 at cell (0, 0) of a 4x3 map of 8x8 cells: Tiled puts its image
+  ;; at x 0..7, y 0..7 on orthogonal, staggered and hexagonal maps (row 0
+  ;; is not staggered), and at x 8..15 on an isometric one (the diamond's
+  ;; top corner is at x = 3 rows * 4, the tile's left half a tile before).
+  (define (draw o)
+    (let ((path (ly-write-map! (string-append o ".tmx") 4 3 (ly-tile-layer "t" 4 3 "" '(0 0 2))
+                               orientation: o
+                               map-attrs: (if (equal? o "orthogonal") ""
+                                              "staggeraxis=\"y\" staggerindex=\"odd\" hexsidelength=\"4\""))))
+      (render-scene! ly-renderer (make-scene tilemap: (load-tilemap path) background: '(0 0 0))
+                     textures: ly-textures)
+      (renderer-pixels ly-renderer)))
+  (let ((tile-colour ((draw "orthogonal") 4 4)))
+    (test-assert "the tile is not the background" (not (equal? tile-colour '(0 0 0 255))))
+    (for-each
+     (lambda (o x)
+       (let ((px (draw o)))
+         (test (string-append "render-scene! draws a " o " map's tile where Tiled does")
+               (list tile-colour '(0 0 0 255))
+               (list (px x 4) (px (- 16 x) 4)))))
+     '("isometric" "staggered" "hexagonal")
+     '(12 4 4))))
+
+(test-group "layers: debug outlines of an isometric map's objects"
+  ;; a rectangle at (8, 0), 8 x 8 on a 4 x 3 isometric map of 8 x 8 cells:
+  ;; its corners project to (16, 4) (20, 8) (12, 8) (16, 12), so its
+  ;; outline is the box from (12, 4) to (20, 12)
+  (let* ((path (ly-write-map! "iso-objects.tmx" 4 3
+                              "<objectgroup id=\"9\" name=\"o\"><object id=\"1\" x=\"8\" y=\"0\" width=\"8\" height=\"8\"/></objectgroup>\n"
+                              orientation: "isometric"))
+         (px (begin (render-scene! ly-renderer (make-scene tilemap: (load-tilemap path) background: '(0 0 0))
+                                   textures: ly-textures debug?: #t)
+                    (renderer-pixels ly-renderer))))
+    (test "the outline's corners and sides are where the projected box is"
+          (list ly-magenta ly-magenta ly-magenta ly-magenta)
+          (list (px 12 4) (px 19 4) (px 12 11) (px 19 8)))
+    (test "and nothing where the unprojected box would be" '(0 0 0 255) (px 8 2))))
 
 (test-group "layers: tilemap-hide-layers"
   (let* ((tm (load-tilemap
@@ -536,16 +559,46 @@
              0 (lambda (g)
                  (game-load-scene! g ly-objects-map camera-target: #f)
                  (set! before (list (game-scene g) (game-textures g)))
-                 (set! outcome
-                   (handle-exceptions exn (error-text exn)
-                     (game-load-scene! g iso)))
+                 (set! outcome (game-load-scene! g iso))
                  (set! before (list (eq? (car before) (game-scene g))
                                     (eq? (cadr before) (game-textures g))
                                     (texture-alive? (cdar (game-textures g)))))))))
-    (test "game-load-scene! refuses an isometric map, naming the file"
-          (sprintf "unsupported orientation isometric in ~a: only orthogonal maps are drawn" iso)
-          outcome)
-    (test "and leaves the game's scene and textures as they were" '(#t #t #t) before)))
+    (test "game-load-scene! loads an isometric map" #t (scene? outcome))
+    (test "and it becomes the game's scene, its textures the game's" '(#f #f #t) before)))
+
+(test-group "game-load-scene!: the map's background colour; animated tiles in game time"
+  ;; gid 2 animates: yellow (local 1) for 100 ms, then magenta (local 2)
+  ;; for 100 ms, round again; frames are 16 ms, drawn at frames-run * 16.
+  (let ((path (ly-path "animated.tmx")))
+    (with-output-to-file path
+      (lambda ()
+        (print "<?xml version=\"1.0\" encoding=\"UTF-8\"?>")
+        (print "<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"4\" height=\"3\" tilewidth=\"8\" tileheight=\"8\" infinite=\"0\" backgroundcolor=\"#102030\">")
+        (print " <tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"4\" columns=\"4\">")
+        (print "  <image source=\"tiles.png\" width=\"32\" height=\"8\"/>")
+        (print "  <tile id=\"1\"><animation><frame tileid=\"1\" duration=\"100\"/><frame tileid=\"2\" duration=\"100\"/></animation></tile>")
+        (print " </tileset>")
+        (print " <layer id=\"1\" name=\"l\" width=\"4\" height=\"3\"><data encoding=\"csv\">2,0,0,0,0,0,0,0,0,0,0,0</data></layer>")
+        (print "</map>")))
+    (define (run frames #!optional (background #f))
+      (let* ((seen #f)
+             (g (ly-run-game frames
+                             (lambda (g) (if background
+                                             (game-load-scene! g path camera-target: #f background: background)
+                                             (game-load-scene! g path camera-target: #f)))
+                             render: (lambda (g) (set! seen (list (ly-game-pixel g 4 4)
+                                                                  (ly-game-pixel g 20 20)))))))
+        seen))
+    (test "the map's backgroundcolor is the scene's background; the tile's first frame at 16 ms"
+          (list ly-yellow '(16 32 48 255)) (run 1))
+    (test "background: wins over the map's colour" '(1 2 3 255) (cadr (run 1 '(1 2 3))))
+    (test "the second frame at 112 ms" ly-magenta (car (run 7)))
+    (test "still the second at 192 ms" ly-magenta (car (run 12)))
+    (test "the first again at 208 ms" ly-yellow (car (run 13)))
+    (test-error "render-scene!'s time: must be a finite number"
+                (lambda (e) (substring-index "time: must be a finite number of milliseconds" (error-text e)))
+                (render-scene! ly-renderer (make-scene tilemap: (load-tilemap path))
+                               textures: ly-textures time: +nan.0))))
 
 (free-surface! ly-surface)
 (delete-directory ly-dir #t)
