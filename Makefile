@@ -13,7 +13,7 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util keywords srfi-197 entity check camera tween animation xml decode map tmx tilemap scene broadphase physics overlap pipeline sdl2 renderer input sound text assets prefabs objects game level repl engine
+MODULES := test util keywords srfi-197 entity check camera tween animation particles xml decode map tmx tilemap scene broadphase physics overlap pipeline sdl2 renderer input sound text assets prefabs objects game level repl engine
 
 # C libraries a module binds through the FFI (passed to the linker by csc).
 LINK_xml    := -L -lexpat
@@ -64,6 +64,7 @@ $(BUILD)/downstroke.sdl2.so: $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.decode.so: $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
+$(BUILD)/downstroke.particles.so: $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.map.so:       $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.tmx.so $(BUILD)/downstroke.objects.so
@@ -72,7 +73,7 @@ $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/dow
 $(BUILD)/downstroke.overlap.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.check.so:     $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so
 $(BUILD)/downstroke.camera.so:    $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so
-$(BUILD)/downstroke.pipeline.so:  $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.srfi-197.so
+$(BUILD)/downstroke.pipeline.so:  $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.particles.so $(BUILD)/downstroke.srfi-197.so
 $(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.assets.so:    $(BUILD)/downstroke.util.so
@@ -82,10 +83,11 @@ $(BUILD)/downstroke.game.so:      $(BUILD)/downstroke.assets.so $(BUILD)/downstr
 $(BUILD)/downstroke.level.so:     $(BUILD)/downstroke.game.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.objects.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.repl.so:      
 $(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.game.so $(BUILD)/downstroke.level.so $(BUILD)/downstroke.pipeline.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.repl.so
-$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.check.so
+$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.particles.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.check.so
 
 # C files a module includes (its foreign-declare), found through -I.
 $(BUILD)/downstroke.pipeline.so: needs.c
+$(BUILD)/downstroke.renderer.so: keys.c
 $(BUILD)/downstroke.physics.so: motion.c motion.h
 $(BUILD)/downstroke.broadphase.so: broadphase.c
 

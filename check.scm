@@ -28,13 +28,18 @@
       #:frame-start #:skip-pipelines #:collision-mode #:tween
       #:group-id #:group-origin? #:group-local-x #:group-local-y
       #:animations #:anim-name #:anim-frame #:anim-tick #:anim-duration #:anim-finished?
-      #:tile-id #:color #:facing))
+      #:tile-id #:color #:facing
+      ;; sprites and particles (renderer.scm, particles.scm)
+      #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y #:flip-x? #:flip-y?
+      #:angle #:scale #:scale-x #:scale-y #:alpha #:tint #:tileset #:z #:emitter))
 
   (define pipeline-steps
     '(tweens frame-start acceleration gravity velocity-x tile-collisions-x velocity-y
-      tile-collisions-y on-solid entity-collisions animation))
+      tile-collisions-y on-solid entity-collisions animation particles))
 
-  (define number-keys '(#:x #:y #:width #:height #:vx #:vy #:ay))
+  (define number-keys '(#:x #:y #:width #:height #:vx #:vy #:ay
+                        #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y
+                        #:angle #:scale #:scale-x #:scale-y #:alpha #:z))
 
   (define (kw k) (sprintf "~s" k))
 

@@ -118,10 +118,13 @@
    check-map-orientation)
 
   (import (downstroke keywords) (only (downstroke check) report-entity-problems!))
-  (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
+  (import scheme (chicken base) (chicken format) (chicken sort) (chicken fixnum) (chicken foreign)
+          srfi-4
           (downstroke sdl2) (downstroke entity) (downstroke scene)
           (downstroke map)
-          (only (downstroke physics) entity-cell-span tunnel-risk?))
+          (only (downstroke physics) entity-cell-span tunnel-risk?)
+          (only (downstroke particles) emitter? emitter-particles emitter-tile-id emitter-size
+                particle-x particle-y particle-color))
 
   ;; The rounding rule (see above): world coordinate -> whole screen pixel.
   (define (screen-coordinate x camera)
@@ -406,34 +409,196 @@
       (error who "#:color must be (r g b [a])" c))
     (if (= (length c) 3) (append c '(255)) c))
 
-  ;; One entity (see the head of this file). tileset/texture: the sprite
-  ;; sheet, either may be #f.
-  (define (render-entity! r e cx cy tileset texture)
-    (let ((tile-id (entity-ref e #:tile-id #f))
-          (color (entity-ref e #:color #f))
-          (x (entity-ref e #:x 0))
-          (y (entity-ref e #:y 0)))
-      (cond ((and tile-id tileset texture
-                  (>= (- tile-id (tileset-first-gid tileset)) 0))
-             (receive (sx sy sw sh)
-                 (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
-               (render-copy! r texture (make-rect sx sy sw sh)
-                             (make-rect (screen-coordinate x cx) (screen-coordinate y cy) sw sh)
-                             flip: (if (eqv? (entity-ref e #:facing 1) -1) '(horizontal) '()))))
-            (color
-             (let* ((c (color-components 'render-scene! color))
-                    (x0 (screen-coordinate x cx))
-                    (y0 (screen-coordinate y cy))
-                    (x1 (screen-coordinate (+ x (entity-ref e #:width 0)) cx))
-                    (y1 (screen-coordinate (+ y (entity-ref e #:height 0)) cy)))
-               (when (and (> x1 x0) (> y1 y0))
-                 (render-draw-blend-mode-set! r (if (< (list-ref c 3) 255) 'blend 'none))
-                 (apply render-draw-color-set! r c)
-                 (render-fill-rect! r (make-rect x0 y0 (- x1 x0) (- y1 y0))))))
-            (else (void)))))
+  ;; The drawing keys beyond #:tile-id, #:color and #:facing. An entity
+  ;; holding none of them (one C walk, keys.c) is drawn by the code of
+  ;; before them, so it costs what it did; the others by draw-sprite!.
+  ;; The bit of each key is its index here.
+  (foreign-declare "#include \"keys.c\"")
+  (define sprite-keys
+    (vector #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y #:flip-x? #:flip-y?
+            #:angle #:scale #:scale-x #:scale-y #:alpha #:tint #:tileset #:emitter))
+  (define keys-mask (foreign-lambda scheme-object "ds_keys_mask" scheme-object scheme-object))
+  (define z-keys (vector #:z))
+  (define any-has-key? (foreign-lambda scheme-object "ds_any_has_key" scheme-object scheme-object))
+  (define bit-tileset 4096)
+  (define bit-emitter 8192)
 
-  (define (render-entities! r entities cx cy tileset texture)
-    (for-each (lambda (e) (render-entity! r e cx cy tileset texture)) entities))
+  ;; A key's number, checked: the error names the entity and the key.
+  (define (sprite-number e key default)
+    (let ((v (entity-ref e key default)))
+      (if (and (real? v) (or (exact? v) (finite? v)))
+          v
+          (error 'render-scene! (sprintf "entity ~a: ~s is ~s, not a finite number"
+                                         (entity-label e) key v)))))
+
+  (define (byte-of x) (max 0 (min 255 (round-int x))))
+
+  ;; One entity (see the head of this file). tileset/texture: the scene's
+  ;; sprite sheet, either may be #f; sheet-for: (entity name) -> (values
+  ;; tileset texture) for #:tileset.
+  (define (render-entity! r e cx cy tileset texture #!optional (sheet-for no-sheets))
+    (let ((mask (keys-mask e sprite-keys)))
+      (if (fx> mask 0)
+          (draw-sprite! r e mask cx cy tileset texture sheet-for)
+          (let ((tile-id (entity-ref e #:tile-id #f))
+                (color (entity-ref e #:color #f))
+                (x (entity-ref e #:x 0))
+                (y (entity-ref e #:y 0)))
+            (cond ((and tile-id tileset texture
+                        (>= (- tile-id (tileset-first-gid tileset)) 0))
+                   (receive (sx sy sw sh)
+                       (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
+                     (render-copy! r texture (make-rect sx sy sw sh)
+                                   (make-rect (screen-coordinate x cx) (screen-coordinate y cy) sw sh)
+                                   flip: (if (eqv? (entity-ref e #:facing 1) -1) '(horizontal) '()))))
+                  (color (fill-box! r (color-components 'render-scene! color) x y
+                                    (entity-ref e #:width 0) (entity-ref e #:height 0) cx cy))
+                  (else (void)))))))
+
+  ;; A filled world box x y w h of colour c (r g b a), by the rounding rule.
+  (define (fill-box! r c x y w h cx cy)
+    (let ((x0 (screen-coordinate x cx))
+          (y0 (screen-coordinate y cy))
+          (x1 (screen-coordinate (+ x w) cx))
+          (y1 (screen-coordinate (+ y h) cy)))
+      (when (and (> x1 x0) (> y1 y0))
+        (render-draw-blend-mode-set! r (if (< (list-ref c 3) 255) 'blend 'none))
+        (apply render-draw-color-set! r c)
+        (render-fill-rect! r (make-rect x0 y0 (- x1 x0) (- y1 y0))))))
+
+  (define (no-sheets e name)
+    (error 'render-scene! (sprintf "entity ~a: #:tileset ~s, but render-entity! was given no sheets"
+                                   (entity-label e) name)))
+
+  ;; The general path: an entity with some of sprite-keys.
+  (define (draw-sprite! r e mask cx cy tileset texture sheet-for)
+    (define (has? bit) (not (fx= 0 (fxand mask bit))))
+    (when (has? bit-emitter)
+      (draw-particles! r e cx cy tileset texture sheet-for))
+    (receive (tileset texture)
+        (if (has? bit-tileset)
+            (sheet-for e (entity-ref e #:tileset))
+            (values tileset texture))
+      (let* ((tile-id (entity-ref e #:tile-id #f))
+             (alpha (if (has? 1024) (byte-of (sprite-number e #:alpha 255)) 255)))
+        (cond ((and tile-id tileset texture
+                    (>= (- tile-id (tileset-first-gid tileset)) 0))
+               (when (> alpha 0)
+                 (receive (sx sy sw sh)
+                     (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
+                   (draw-tile! r e mask texture sx sy sw sh alpha cx cy))))
+              ((entity-ref e #:color #f)
+               => (lambda (color)
+                    ;; a box: #:alpha multiplies its colour's alpha; the
+                    ;; offset, flips, rotation, scale and tint are for sprites
+                    (let ((c (color-components 'render-scene! color)))
+                      (fill-box! r (if (= alpha 255)
+                                       c
+                                       (list (car c) (cadr c) (caddr c)
+                                             (quotient (+ (* (cadddr c) alpha) 127) 255)))
+                                 (entity-ref e #:x 0) (entity-ref e #:y 0)
+                                 (entity-ref e #:width 0) (entity-ref e #:height 0) cx cy))))
+              (else (void))))))
+
+  ;; A tile sw x sh drawn for e: its top-left at #:x + #:sprite-offset-x
+  ;; (y likewise), scaled by #:scale-x / #:scale-y (each defaulting to
+  ;; #:scale, 1) about the origin (#:origin-x #:origin-y, sprite pixels
+  ;; from the top-left, default the centre), mirrored by #:flip-x? (or
+  ;; #:facing -1, not both) and #:flip-y?, turned #:angle degrees
+  ;; clockwise about the origin, colour-modulated by #:tint and
+  ;; alpha-modulated by #:alpha (both reset after the copy).
+  (define (draw-tile! r e mask texture sx sy sw sh alpha cx cy)
+    (define (has? bit) (not (fx= 0 (fxand mask bit))))
+    (define (num bit key default) (if (has? bit) (sprite-number e key default) default))
+    (let* ((scale (num 128 #:scale 1))
+           (kx (num 256 #:scale-x scale))
+           (ky (num 512 #:scale-y scale))
+           (ox (num 4 #:origin-x (/ sw 2)))
+           (oy (num 8 #:origin-y (/ sh 2)))
+           (angle (num 64 #:angle 0))
+           ;; the origin in the world, and the scaled box about it
+           (px (+ (entity-ref e #:x 0) (num 1 #:sprite-offset-x 0) ox))
+           (py (+ (entity-ref e #:y 0) (num 2 #:sprite-offset-y 0) oy))
+           (w (* kx sw)) (h (* ky sh))
+           ;; the box's centre, turned about the origin: SDL turns a copy
+           ;; about its own centre
+           (dx (- (/ w 2) (* kx ox))) (dy (- (/ h 2) (* ky oy)))
+           (mx (if (zero? angle) (+ px dx) (+ px (- (* dx (cosine angle)) (* dy (sine angle))))))
+           (my (if (zero? angle) (+ py dy) (+ py (* dx (sine angle)) (* dy (cosine angle)))))
+           (x0 (screen-coordinate (- mx (/ w 2)) cx))
+           (y0 (screen-coordinate (- my (/ h 2)) cy))
+           (x1 (screen-coordinate (+ mx (/ w 2)) cx))
+           (y1 (screen-coordinate (+ my (/ h 2)) cy))
+           (flip-x? (not (eq? (and (has? 16) #t) (eqv? (entity-ref e #:facing 1) -1))))
+           (tint (and (has? 2048) (entity-ref e #:tint))))
+      (when (or (< kx 0) (< ky 0))
+        (error 'render-scene! (sprintf "entity ~a: a negative scale (~s x ~s); mirror with #:flip-x? / #:flip-y?"
+                                       (entity-label e) kx ky)))
+      (when (and (> x1 x0) (> y1 y0))
+        (when tint
+          (let ((c (tint-components tint)))
+            (unless (and (list? c) (= (length c) 4))
+              (error 'render-scene! (sprintf "entity ~a: #:tint is ~s, not (r g b)" (entity-label e) tint)))
+            (texture-color-mod-set! texture (byte-of (car c)) (byte-of (cadr c)) (byte-of (caddr c)))))
+        (when (< alpha 255) (texture-alpha-mod-set! texture alpha))
+        (dynamic-wind
+         void
+         (lambda ()
+           (render-copy! r texture (make-rect sx sy sw sh) (make-rect x0 y0 (- x1 x0) (- y1 y0))
+                         angle: angle
+                         flip: (append (if flip-x? '(horizontal) '())
+                                       (if (has? 32) '(vertical) '()))))
+         (lambda ()
+           (when tint (texture-color-mod-set! texture 255 255 255))
+           (when (< alpha 255) (texture-alpha-mod-set! texture 255)))))))
+
+  ;; An emitter's particles (particles.scm), in world coordinates: each a
+  ;; filled box of the emitter's size, or its tile of the entity's sheet,
+  ;; centred on the particle, in the particle's colour.
+  (define (draw-particles! r e cx cy tileset texture sheet-for)
+    (let* ((em (entity-ref e #:emitter))
+           (_ (unless (emitter? em)
+                (error 'render-scene! (sprintf "entity ~a: #:emitter is ~s, not an emitter (make-emitter)"
+                                               (entity-label e) em))))
+           (tile-id (emitter-tile-id em)))
+      (if tile-id
+          (receive (tileset texture)
+              (if (entity-ref e #:tileset #f)
+                  (sheet-for e (entity-ref e #:tileset))
+                  (values tileset texture))
+            (when (and tileset texture (>= (- tile-id (tileset-first-gid tileset)) 0))
+              (receive (sx sy sw sh) (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
+                (dynamic-wind
+                 void
+                 (lambda ()
+                   (for-each
+                    (lambda (p)
+                      (let ((c (particle-color em p)))
+                        (texture-color-mod-set! texture (car c) (cadr c) (caddr c))
+                        (texture-alpha-mod-set! texture (cadddr c))
+                        (render-copy! r texture (make-rect sx sy sw sh)
+                                      (make-rect (screen-coordinate (- (particle-x p) (/ sw 2)) cx)
+                                                 (screen-coordinate (- (particle-y p) (/ sh 2)) cy)
+                                                 sw sh))))
+                    (emitter-particles em)))
+                 (lambda ()
+                   (texture-color-mod-set! texture 255 255 255)
+                   (texture-alpha-mod-set! texture 255))))))
+          (let ((w (car (emitter-size em))) (h (cadr (emitter-size em))))
+            (for-each
+             (lambda (p)
+               (fill-box! r (particle-color em p) (- (particle-x p) (/ w 2)) (- (particle-y p) (/ h 2))
+                          w h cx cy))
+             (emitter-particles em))))))
+
+  ;; Entities in list order, or, when one has #:z, by #:z (default 0),
+  ;; ties in list order (a stable sort).
+  (define (render-entities! r entities cx cy tileset texture #!optional (sheet-for no-sheets))
+    (for-each (lambda (e) (render-entity! r e cx cy tileset texture sheet-for))
+              (if (any-has-key? entities z-keys)
+                  (map cdr (sort (map (lambda (e) (cons (sprite-number e #:z 0) e)) entities)
+                                 (lambda (a b) (< (car a) (car b)))))
+                  entities)))
 
   ;;; ------------------------------------------------------------------
   ;;; Scenes
@@ -598,10 +763,47 @@
                                   (or (scene-tileset-texture scene)
                                       (and sprite-tileset (tileset-image sprite-tileset)
                                            (lookup-texture textures
-                                                           (image-source (tileset-image sprite-tileset))))))
+                                                           (image-source (tileset-image sprite-tileset)))))
+                                  (lambda (e name) (entity-sheet scene tm sprite-tileset textures e name)))
                 (when debug?
                   (render-debug-overlay! r scene view-width: vw view-height: vh)))))
           (void)))))
+
+  ;; An entity's #:tileset: a tileset, or the name (a string or a symbol)
+  ;; of one of the scene's tilesets:, else of its map's tilesets. Its
+  ;; texture is the one `textures` gives for its image (or the scene's
+  ;; tileset-texture for the scene's own sprite tileset). (values tileset
+  ;; texture); an unknown name or a sheet without texture is an error
+  ;; naming the entity.
+  (define (scene-sheets scene tm sprite-tileset)
+    (append (scene-tilesets scene)
+            (if (and sprite-tileset (not (memq sprite-tileset (scene-tilesets scene)))
+                     (not (and tm (memq sprite-tileset (tilemap-tilesets tm)))))
+                (list sprite-tileset)
+                '())
+            (if tm (tilemap-tilesets tm) '())))
+
+  (define (entity-sheet scene tm sprite-tileset textures e name)
+    (let* ((key (if (symbol? name) (symbol->string name) name))
+           (ts (cond ((tileset? name) name)
+                     ((string? key)
+                      (let find ((tss (scene-sheets scene tm sprite-tileset)))
+                        (cond ((null? tss) #f)
+                              ((equal? (tileset-name (car tss)) key) (car tss))
+                              (else (find (cdr tss))))))
+                     (else #f))))
+      (unless ts
+        (error 'render-scene!
+               (sprintf "entity ~a: #:tileset ~s names no tileset of the scene (its tilesets: ~s)"
+                        (entity-label e) name
+                        (map tileset-name (scene-sheets scene tm sprite-tileset)))))
+      (let ((tex (or (and (tileset-image ts) (lookup-texture textures (image-source (tileset-image ts))))
+                     (and (eq? ts sprite-tileset) (scene-tileset-texture scene)))))
+        (unless tex
+          (error 'render-scene!
+                 (sprintf "entity ~a: no texture for the image ~s of its #:tileset ~s (load it with game-load-tilesets!, or pass textures:)"
+                          (entity-label e) (and (tileset-image ts) (image-source (tileset-image ts))) name)))
+        (values ts tex))))
 
   (define (with-zoom r zoom draw)
     (if (= zoom 1)
