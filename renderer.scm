@@ -409,19 +409,24 @@
       (error who "#:color must be (r g b [a])" c))
     (if (= (length c) 3) (append c '(255)) c))
 
-  ;; The drawing keys beyond #:tile-id, #:color and #:facing. An entity
-  ;; holding none of them (one C walk, keys.c) is drawn by the code of
-  ;; before them, so it costs what it did; the others by draw-sprite!.
-  ;; The bit of each key is its index here.
+  ;; The keys an entity is drawn by, read in one C walk (keys.c) instead
+  ;; of an assq each: the first five are those of plain entities, the
+  ;; rest the sprite keys. An entity holding none of the sprite keys is
+  ;; drawn by the code of before them; the others by draw-sprite!. The
+  ;; bit of each key in the walk's answer is its index here.
   (foreign-declare "#include \"keys.c\"")
-  (define sprite-keys
-    (vector #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y #:flip-x? #:flip-y?
+  (define entity-keys
+    (vector #:tile-id #:color #:x #:y #:facing
+            #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y #:flip-x? #:flip-y?
             #:angle #:scale #:scale-x #:scale-y #:alpha #:tint #:tileset #:emitter))
-  (define keys-mask (foreign-lambda scheme-object "ds_keys_mask" scheme-object scheme-object))
-  (define z-keys (vector #:z))
+  (define key-values (make-vector (vector-length entity-keys) #f))
+  (define read-keys! (foreign-lambda scheme-object "ds_entity_keys" scheme-object scheme-object scheme-object))
   (define any-has-key? (foreign-lambda scheme-object "ds_any_has_key" scheme-object scheme-object))
-  (define bit-tileset 4096)
-  (define bit-emitter 8192)
+  (define plain-keys 32)                ; bits below this: the first five keys
+  (define bit-offset-x 32) (define bit-offset-y 64) (define bit-origin-x 128) (define bit-origin-y 256)
+  (define bit-flip-x 512) (define bit-flip-y 1024) (define bit-angle 2048) (define bit-scale 4096)
+  (define bit-scale-x 8192) (define bit-scale-y 16384) (define bit-alpha 32768) (define bit-tint 65536)
+  (define bit-tileset 131072) (define bit-emitter 262144)
 
   ;; A key's number, checked: the error names the entity and the key.
   (define (sprite-number e key default)
@@ -437,23 +442,32 @@
   ;; sprite sheet, either may be #f; sheet-for: (entity name) -> (values
   ;; tileset texture) for #:tileset.
   (define (render-entity! r e cx cy tileset texture #!optional (sheet-for no-sheets))
-    (let ((mask (keys-mask e sprite-keys)))
-      (if (fx> mask 0)
-          (draw-sprite! r e mask cx cy tileset texture sheet-for)
-          (let ((tile-id (entity-ref e #:tile-id #f))
-                (color (entity-ref e #:color #f))
-                (x (entity-ref e #:x 0))
-                (y (entity-ref e #:y 0)))
-            (cond ((and tile-id tileset texture
-                        (>= (- tile-id (tileset-first-gid tileset)) 0))
-                   (receive (sx sy sw sh)
-                       (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
-                     (render-copy! r texture (make-rect sx sy sw sh)
-                                   (make-rect (screen-coordinate x cx) (screen-coordinate y cy) sw sh)
-                                   flip: (if (eqv? (entity-ref e #:facing 1) -1) '(horizontal) '()))))
-                  (color (fill-box! r (color-components 'render-scene! color) x y
-                                    (entity-ref e #:width 0) (entity-ref e #:height 0) cx cy))
-                  (else (void)))))))
+    (draw-entity! r e cx cy tileset texture sheet-for))
+
+  (define (draw-entity! r e cx cy tileset texture sheet-for)
+    (let ((mask (read-keys! e entity-keys key-values)))
+      (cond ((fx< mask 0)               ; not an alist: entity-ref raises the error
+             (draw-plain! r (entity-ref e #:tile-id #f) (entity-ref e #:color #f)
+                          (entity-ref e #:x 0) (entity-ref e #:y 0) (entity-ref e #:facing 1)
+                          e cx cy tileset texture))
+            ((fx< mask plain-keys)
+             (draw-plain! r (vector-ref key-values 0) (vector-ref key-values 1)
+                          (or (vector-ref key-values 2) 0) (or (vector-ref key-values 3) 0)
+                          (vector-ref key-values 4) e cx cy tileset texture))
+            (else (draw-sprite! r e mask cx cy tileset texture sheet-for)))))
+
+  ;; An entity without sprite keys: as before them.
+  (define (draw-plain! r tile-id color x y facing e cx cy tileset texture)
+    (cond ((and tile-id tileset texture
+                (>= (- tile-id (tileset-first-gid tileset)) 0))
+           (receive (sx sy sw sh)
+               (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
+             (render-copy! r texture (make-rect sx sy sw sh)
+                           (make-rect (screen-coordinate x cx) (screen-coordinate y cy) sw sh)
+                           flip: (if (eqv? facing -1) '(horizontal) '()))))
+          (color (fill-box! r (color-components 'render-scene! color) x y
+                            (entity-ref e #:width 0) (entity-ref e #:height 0) cx cy))
+          (else (void))))
 
   ;; A filled world box x y w h of colour c (r g b a), by the rounding rule.
   (define (fill-box! r c x y w h cx cy)
@@ -470,7 +484,7 @@
     (error 'render-scene! (sprintf "entity ~a: #:tileset ~s, but render-entity! was given no sheets"
                                    (entity-label e) name)))
 
-  ;; The general path: an entity with some of sprite-keys.
+  ;; The general path: an entity with some of the sprite keys.
   (define (draw-sprite! r e mask cx cy tileset texture sheet-for)
     (define (has? bit) (not (fx= 0 (fxand mask bit))))
     (when (has? bit-emitter)
@@ -480,7 +494,7 @@
             (sheet-for e (entity-ref e #:tileset))
             (values tileset texture))
       (let* ((tile-id (entity-ref e #:tile-id #f))
-             (alpha (if (has? 1024) (byte-of (sprite-number e #:alpha 255)) 255)))
+             (alpha (if (has? bit-alpha) (byte-of (sprite-number e #:alpha 255)) 255)))
         (cond ((and tile-id tileset texture
                     (>= (- tile-id (tileset-first-gid tileset)) 0))
                (when (> alpha 0)
@@ -510,15 +524,15 @@
   (define (draw-tile! r e mask texture sx sy sw sh alpha cx cy)
     (define (has? bit) (not (fx= 0 (fxand mask bit))))
     (define (num bit key default) (if (has? bit) (sprite-number e key default) default))
-    (let* ((scale (num 128 #:scale 1))
-           (kx (num 256 #:scale-x scale))
-           (ky (num 512 #:scale-y scale))
-           (ox (num 4 #:origin-x (/ sw 2)))
-           (oy (num 8 #:origin-y (/ sh 2)))
-           (angle (num 64 #:angle 0))
+    (let* ((scale (num bit-scale #:scale 1))
+           (kx (num bit-scale-x #:scale-x scale))
+           (ky (num bit-scale-y #:scale-y scale))
+           (ox (num bit-origin-x #:origin-x (/ sw 2)))
+           (oy (num bit-origin-y #:origin-y (/ sh 2)))
+           (angle (num bit-angle #:angle 0))
            ;; the origin in the world, and the scaled box about it
-           (px (+ (entity-ref e #:x 0) (num 1 #:sprite-offset-x 0) ox))
-           (py (+ (entity-ref e #:y 0) (num 2 #:sprite-offset-y 0) oy))
+           (px (+ (entity-ref e #:x 0) (num bit-offset-x #:sprite-offset-x 0) ox))
+           (py (+ (entity-ref e #:y 0) (num bit-offset-y #:sprite-offset-y 0) oy))
            (w (* kx sw)) (h (* ky sh))
            ;; the box's centre, turned about the origin: SDL turns a copy
            ;; about its own centre
@@ -529,8 +543,8 @@
            (y0 (screen-coordinate (- my (/ h 2)) cy))
            (x1 (screen-coordinate (+ mx (/ w 2)) cx))
            (y1 (screen-coordinate (+ my (/ h 2)) cy))
-           (flip-x? (not (eq? (and (has? 16) #t) (eqv? (entity-ref e #:facing 1) -1))))
-           (tint (and (has? 2048) (entity-ref e #:tint))))
+           (flip-x? (not (eq? (and (has? bit-flip-x) #t) (eqv? (entity-ref e #:facing 1) -1))))
+           (tint (and (has? bit-tint) (entity-ref e #:tint))))
       (when (or (< kx 0) (< ky 0))
         (error 'render-scene! (sprintf "entity ~a: a negative scale (~s x ~s); mirror with #:flip-x? / #:flip-y?"
                                        (entity-label e) kx ky)))
@@ -547,7 +561,7 @@
            (render-copy! r texture (make-rect sx sy sw sh) (make-rect x0 y0 (- x1 x0) (- y1 y0))
                          angle: angle
                          flip: (append (if flip-x? '(horizontal) '())
-                                       (if (has? 32) '(vertical) '()))))
+                                       (if (has? bit-flip-y) '(vertical) '()))))
          (lambda ()
            (when tint (texture-color-mod-set! texture 255 255 255))
            (when (< alpha 255) (texture-alpha-mod-set! texture 255)))))))
@@ -594,8 +608,8 @@
   ;; Entities in list order, or, when one has #:z, by #:z (default 0),
   ;; ties in list order (a stable sort).
   (define (render-entities! r entities cx cy tileset texture #!optional (sheet-for no-sheets))
-    (for-each (lambda (e) (render-entity! r e cx cy tileset texture sheet-for))
-              (if (any-has-key? entities z-keys)
+    (for-each (lambda (e) (draw-entity! r e cx cy tileset texture sheet-for))
+              (if (any-has-key? entities #:z)
                   (map cdr (sort (map (lambda (e) (cons (sprite-number e #:z 0) e)) entities)
                                  (lambda (a b) (< (car a) (car b)))))
                   entities)))
