@@ -130,6 +130,7 @@ bench: libs $(BUILD)/bench-scenes
 	sh tools/plot-bench.sh bench/results.csv docs/images
 	$(HEADLESS) csi -q -s bench/map-load.scm
 	$(HEADLESS) csi -q -s bench/render.scm
+	$(HEADLESS) csi -q -s bench/sprites.scm
 
 clean:
 	rm -rf $(BUILD)
