@@ -37,10 +37,11 @@
    emitter-particles emitter-count emitter-emitting? emitter-done? emitter-seed
    emitter-rate emitter-size emitter-tile-id emitter-color emitter-end-color
    particle? particle-x particle-y particle-vx particle-vy particle-age particle-life
-   particle-color step-particles random-next)
+   particle-color emitter-for-each step-particles random-next)
 
   (import (downstroke keywords))
-  (import scheme (chicken base) (chicken format) (downstroke entity))
+  (import scheme (chicken base) (chicken format) (chicken flonum) (chicken fixnum) srfi-4
+          (downstroke entity))
 
   (define-record-type particle
     (make-particle x y vx vy age life)
@@ -48,28 +49,63 @@
     (x particle-x) (y particle-y) (vx particle-vx) (vy particle-vy)
     (age particle-age) (life particle-life))
 
-  ;; The configuration and the state: particles (newest first), the
+  ;; The configuration and the state: the particles, packed six flonums
+  ;; each (x y vx vy age life), oldest first, in an f64vector that a step
+  ;; replaces (never changes: an emitter is a value), `count` of them; the
   ;; generator's state, the fraction of a particle carried over, and the
-  ;; burst still to emit.
+  ;; burst still to emit. Packed, ten thousand particles are one object
+  ;; for the garbage collector instead of ten thousand.
   (define-record-type emitter
     (%make-emitter rate lifetime speed angle gravity color end-color size tile-id
-                   max-particles emitting? particles count seed carry pending)
+                   max-particles emitting? data count seed carry pending)
     emitter?
     (rate emitter-rate) (lifetime emitter-lifetime) (speed emitter-speed)
     (angle emitter-angle) (gravity emitter-gravity) (color emitter-color)
     (end-color emitter-end-color) (size emitter-size) (tile-id emitter-tile-id)
     (max-particles emitter-max-particles) (emitting? emitter-emitting?)
-    (particles emitter-particles) (count emitter-count) (seed emitter-seed)
+    (data emitter-data) (count emitter-count) (seed emitter-seed)
     (carry emitter-carry) (pending emitter-pending))
 
   (define-record-printer (emitter e out)
     (fprintf out "#<emitter ~a particles>" (emitter-count e)))
 
-  (define (with-state e emitting? particles count seed carry pending)
+  (define (with-state e emitting? data count seed carry pending)
     (%make-emitter (emitter-rate e) (emitter-lifetime e) (emitter-speed e) (emitter-angle e)
                    (emitter-gravity e) (emitter-color e) (emitter-end-color e) (emitter-size e)
                    (emitter-tile-id e) (emitter-max-particles e)
-                   emitting? particles count seed carry pending))
+                   emitting? data count seed carry pending))
+
+  ;; The particles as records, oldest first (for a game or a test to look
+  ;; at; the renderer reads the packed form with emitter-for-each).
+  (define (emitter-particles e)
+    (let ((d (emitter-data e)))
+      (let loop ((i (fx- (emitter-count e) 1)) (out '()))
+        (if (fx< i 0)
+            out
+            (let ((k (fx* 6 i)))
+              (loop (fx- i 1)
+                    (cons (make-particle (f64vector-ref d k) (f64vector-ref d (fx+ k 1))
+                                         (f64vector-ref d (fx+ k 2)) (f64vector-ref d (fx+ k 3))
+                                         (inexact->exact (f64vector-ref d (fx+ k 4)))
+                                         (inexact->exact (f64vector-ref d (fx+ k 5))))
+                          out)))))))
+
+  ;; (proc x y r g b a) for each particle, oldest first: its place and its
+  ;; colour by age (particle-color).
+  (define (emitter-for-each e proc)
+    (let ((d (emitter-data e)) (n (emitter-count e))
+          (c0 (emitter-color e)) (c1 (emitter-end-color e)))
+      (do ((i 0 (fx+ i 1))) ((fx= i n))
+        (let ((k (fx* 6 i)))
+          (if (eq? c0 c1)
+              (proc (f64vector-ref d k) (f64vector-ref d (fx+ k 1))
+                    (car c0) (cadr c0) (caddr c0) (cadddr c0))
+              (let ((a (inexact->exact (f64vector-ref d (fx+ k 4))))
+                    (l (inexact->exact (f64vector-ref d (fx+ k 5)))))
+                (define (at from to) (fx+ from (fx/ (fx* (fx- to from) a) l)))
+                (proc (f64vector-ref d k) (f64vector-ref d (fx+ k 1))
+                      (at (car c0) (car c1)) (at (cadr c0) (cadr c1))
+                      (at (caddr c0) (caddr c1)) (at (cadddr c0) (cadddr c1)))))))))
 
   ;;; Checking the configuration: each error names make-emitter and the key.
 
@@ -119,7 +155,7 @@
         (%make-emitter rate life (range "speed:" speed #f) (range "angle:" angle #f)
                        gravity c0 (if end-color (colour "end-color:" end-color) c0)
                        size tile-id max-particles (and emitting? #t)
-                       '() 0 seed 0 burst))))
+                       (make-f64vector 0) 0 seed 0 burst))))
 
   ;;; The generator: Park and Miller's minimal standard. The state is a
   ;;; fixnum from 1 to 2^31 - 2; 16807 times it fits a fixnum.
@@ -152,57 +188,72 @@
         (sin (/ (* d pi) 180))))
   (define (cosine d) (sine (+ d 90)))
 
-  ;; One new particle in the box x y w h: (values particle s').
-  (define (spawn e x y w h s)
+  ;; One new particle in the box x y w h, written at index k of d:
+  ;; answers the generator's new state.
+  (define (spawn! d k e x y w h s)
     (receive (px s) (if (zero? w) (values x s) (draw-real (cons x (+ x w)) s))
       (receive (py s) (if (zero? h) (values y s) (draw-real (cons y (+ y h)) s))
         (receive (life s) (draw-int (emitter-lifetime e) s)
           (receive (speed s) (draw-real (emitter-speed e) s)
             (receive (angle s) (draw-real (emitter-angle e) s)
-              (values (make-particle px py (* speed (cosine angle)) (* speed (sine angle)) 0 life)
-                      s)))))))
+              (f64vector-set! d k (exact->inexact px))
+              (f64vector-set! d (fx+ k 1) (exact->inexact py))
+              (f64vector-set! d (fx+ k 2) (exact->inexact (* speed (cosine angle))))
+              (f64vector-set! d (fx+ k 3) (exact->inexact (* speed (sine angle))))
+              (f64vector-set! d (fx+ k 4) 0.)
+              (f64vector-set! d (fx+ k 5) (exact->inexact life))
+              s))))))
 
   ;; One frame of the emitter, whose box is x y w h: see the head of the file.
   (define (emitter-step e x y w h)
-    (let* ((g (emitter-gravity e))
-           ;; 1. age, drop, move (the list keeps its order: newest first)
-           (moved (let loop ((ps (emitter-particles e)) (out '()) (n 0))
-                    (if (null? ps)
-                        (cons (reverse out) n)
-                        (let* ((p (car ps)) (age (+ (particle-age p) 1)))
-                          (if (>= age (particle-life p))
-                              (loop (cdr ps) out n)
-                              (let ((vy (+ (particle-vy p) g)))
-                                (loop (cdr ps)
-                                      (cons (make-particle (+ (particle-x p) (particle-vx p))
-                                                           (+ (particle-y p) vy)
-                                                           (particle-vx p) vy age (particle-life p))
-                                            out)
-                                      (+ n 1))))))))
+    (let* ((g (exact->inexact (emitter-gravity e)))
+           (old (emitter-data e))
+           (n (emitter-count e))
            ;; 2. emit: the rate's whole part now, its fraction carried
            (due (+ (emitter-carry e) (if (emitter-emitting? e) (emitter-rate e) 0)))
            (whole (floor due))
            (wanted (+ whole (emitter-pending e)))
-           (room (max 0 (- (emitter-max-particles e) (cdr moved))))
-           (n (min wanted room)))
-      (let loop ((i 0) (ps (car moved)) (s (emitter-seed e)))
-        (if (= i n)
-            (with-state e (emitter-emitting? e) ps (+ (cdr moved) n) s (- due whole) 0)
-            (receive (p s) (spawn e x y w h s)
-              (loop (+ i 1) (cons p ps) s))))))
+           (d (make-f64vector (fx* 6 (fx+ n (min wanted (emitter-max-particles e)))))))
+      ;; 1. age, drop, move, packing the survivors at the front
+      (let ((live (let loop ((i 0) (j 0))
+                    (if (fx= i n)
+                        j
+                        (let* ((k (fx* 6 i))
+                               (age (fp+ (f64vector-ref old (fx+ k 4)) 1.))
+                               (life (f64vector-ref old (fx+ k 5))))
+                          (if (fp>= age life)
+                              (loop (fx+ i 1) j)
+                              (let ((m (fx* 6 j))
+                                    (vx (f64vector-ref old (fx+ k 2)))
+                                    (vy (fp+ (f64vector-ref old (fx+ k 3)) g)))
+                                (f64vector-set! d m (fp+ (f64vector-ref old k) vx))
+                                (f64vector-set! d (fx+ m 1) (fp+ (f64vector-ref old (fx+ k 1)) vy))
+                                (f64vector-set! d (fx+ m 2) vx)
+                                (f64vector-set! d (fx+ m 3) vy)
+                                (f64vector-set! d (fx+ m 4) age)
+                                (f64vector-set! d (fx+ m 5) life)
+                                (loop (fx+ i 1) (fx+ j 1)))))))))
+        (let* ((spawned (max 0 (min wanted (- (emitter-max-particles e) live))))
+               (total (fx+ live spawned)))
+          (let loop ((i 0) (s (emitter-seed e)))
+            (if (fx= i spawned)
+                (with-state e (emitter-emitting? e)
+                            (if (fx= (fx* 6 total) (f64vector-length d)) d (subf64vector d 0 (fx* 6 total)))
+                            total s (- due whole) 0)
+                (loop (fx+ i 1) (spawn! d (fx* 6 (fx+ live i)) e x y w h s))))))))
 
   ;; n more particles at the next step (an explosion), whether emitting or not.
   (define (emitter-burst e n)
     (unless (and (exact-integer? n) (>= n 0))
       (error 'emitter-burst (sprintf "the count is ~s, not a whole number" n)))
-    (with-state e (emitter-emitting? e) (emitter-particles e) (emitter-count e)
+    (with-state e (emitter-emitting? e) (emitter-data e) (emitter-count e)
                 (emitter-seed e) (emitter-carry e) (+ (emitter-pending e) n)))
 
   (define (emitter-start e)
-    (with-state e #t (emitter-particles e) (emitter-count e) (emitter-seed e) (emitter-carry e)
+    (with-state e #t (emitter-data e) (emitter-count e) (emitter-seed e) (emitter-carry e)
                 (emitter-pending e)))
   (define (emitter-stop e)
-    (with-state e #f (emitter-particles e) (emitter-count e) (emitter-seed e) 0
+    (with-state e #f (emitter-data e) (emitter-count e) (emitter-seed e) 0
                 (emitter-pending e)))
 
   ;; Nothing alive and nothing more to come: the entity may go.

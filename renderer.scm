@@ -123,8 +123,7 @@
           (downstroke sdl2) (downstroke entity) (downstroke scene)
           (downstroke map)
           (only (downstroke physics) entity-cell-span tunnel-risk?)
-          (only (downstroke particles) emitter? emitter-particles emitter-tile-id emitter-size
-                particle-x particle-y particle-color))
+          (only (downstroke particles) emitter? emitter-for-each emitter-tile-id emitter-size))
 
   ;; The rounding rule (see above): world coordinate -> whole screen pixel.
   (define (screen-coordinate x camera)
@@ -585,25 +584,24 @@
                 (dynamic-wind
                  void
                  (lambda ()
-                   (for-each
-                    (lambda (p)
-                      (let ((c (particle-color em p)))
-                        (texture-color-mod-set! texture (car c) (cadr c) (caddr c))
-                        (texture-alpha-mod-set! texture (cadddr c))
-                        (render-copy! r texture (make-rect sx sy sw sh)
-                                      (make-rect (screen-coordinate (- (particle-x p) (/ sw 2)) cx)
-                                                 (screen-coordinate (- (particle-y p) (/ sh 2)) cy)
-                                                 sw sh))))
-                    (emitter-particles em)))
+                   (let ((src (make-rect sx sy sw sh)) (hw (/ sw 2)) (hh (/ sh 2)))
+                     (emitter-for-each
+                      em
+                      (lambda (x y red green blue alpha)
+                        (texture-color-mod-set! texture red green blue)
+                        (texture-alpha-mod-set! texture alpha)
+                        (render-copy! r texture src
+                                      (make-rect (screen-coordinate (- x hw) cx)
+                                                 (screen-coordinate (- y hh) cy)
+                                                 sw sh))))))
                  (lambda ()
                    (texture-color-mod-set! texture 255 255 255)
                    (texture-alpha-mod-set! texture 255))))))
           (let ((w (car (emitter-size em))) (h (cadr (emitter-size em))))
-            (for-each
-             (lambda (p)
-               (fill-box! r (particle-color em p) (- (particle-x p) (/ w 2)) (- (particle-y p) (/ h 2))
-                          w h cx cy))
-             (emitter-particles em))))))
+            (emitter-for-each
+             em
+             (lambda (x y red green blue alpha)
+               (fill-box! r (list red green blue alpha) (- x (/ w 2)) (- y (/ h 2)) w h cx cy)))))))
 
   ;; Entities in list order, or, when one has #:z, by #:z (default 0),
   ;; ties in list order (a stable sort).
