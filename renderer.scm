@@ -123,7 +123,8 @@
           (downstroke sdl2) (downstroke entity) (downstroke scene)
           (downstroke map)
           (only (downstroke physics) entity-cell-span tunnel-risk?)
-          (only (downstroke particles) emitter? emitter-for-each emitter-tile-id emitter-size))
+          (only (downstroke particles) emitter? emitter-for-each emitter-tile-id emitter-size
+                emitter-color emitter-end-color))
 
   ;; The rounding rule (see above): world coordinate -> whole screen pixel.
   (define (screen-coordinate x camera)
@@ -598,10 +599,22 @@
                    (texture-color-mod-set! texture 255 255 255)
                    (texture-alpha-mod-set! texture 255))))))
           (let ((w (car (emitter-size em))) (h (cadr (emitter-size em))))
-            (emitter-for-each
-             em
-             (lambda (x y red green blue alpha)
-               (fill-box! r (list red green blue alpha) (- x (/ w 2)) (- y (/ h 2)) w h cx cy)))))))
+            ;; one blend mode for all; the colour set only when it changes
+            (let ((last-colour -1) (hw (/ w 2)) (hh (/ h 2)))
+              (render-draw-blend-mode-set!
+               r (if (and (= 255 (cadddr (emitter-color em))) (= 255 (cadddr (emitter-end-color em))))
+                     'none
+                     'blend))
+              (emitter-for-each
+               em
+               (lambda (x y red green blue alpha)
+                 (let ((x0 (screen-coordinate (- x hw) cx)) (y0 (screen-coordinate (- y hh) cy))
+                       (colour (+ alpha (* 256 (+ blue (* 256 (+ green (* 256 red))))))))
+                   (unless (= colour last-colour)
+                     (set! last-colour colour)
+                     (render-draw-color-set! r red green blue alpha))
+                   (render-fill-rect! r (make-rect x0 y0 (- (screen-coordinate (+ x hw) cx) x0)
+                                                   (- (screen-coordinate (+ y hh) cy) y0)))))))))))
 
   ;; Entities in list order, or, when one has #:z, by #:z (default 0),
   ;; ties in list order (a stable sort).
