@@ -22,6 +22,9 @@
 ;;; towards color (integer quotient), so a particle is born exactly
 ;;; `color` and fades towards end-color.
 ;;;
+;;; Positions and velocities are flonums, computed in the same order every
+;;; step, so they too are the same on every run.
+;;;
 ;;; Randomness comes from the emitter's own generator (Park and Miller's
 ;;; minimal standard, s' = 16807 s mod (2^31 - 1)), seeded by `seed:`,
 ;;; and is part of the value: the same emitter stepped the same way gives

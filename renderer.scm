@@ -44,7 +44,21 @@
 ;;;      cannot be drawn (no tileset or texture) falls through to #:color.
 ;;;      #:tile-id numbers tiles as gids of the scene's tileset: local tile
 ;;;      id + the tileset's first gid (1 for a map's first tileset), the same
-;;;      numbers the map's cells use;
+;;;      numbers the map's cells use.
+;;;      Sprite keys (docs/rendering.org, "Sprites"), all optional: the
+;;;      sprite is drawn from #:x + #:sprite-offset-x (y likewise), scaled
+;;;      by #:scale-x / #:scale-y (each defaulting to #:scale, 1) and
+;;;      turned #:angle degrees clockwise about its origin (#:origin-x,
+;;;      #:origin-y: sprite pixels from its top-left, default its centre),
+;;;      mirrored by #:flip-x? / #:flip-y?, with #:alpha (0-255) and #:tint
+;;;      (r g b) as the texture's alpha and colour modulation, reset after
+;;;      the copy; #:tileset names another sheet (a tileset of the scene's
+;;;      tilesets:, its own tileset or its map's, by name, or the tileset
+;;;      itself). A box honours #:alpha. An entity with an #:emitter has
+;;;      its particles drawn first (particles.scm). When any entity has a
+;;;      #:z, entities are drawn by #:z (default 0), ties in list order.
+;;;      An entity with none of these keys is drawn as before them, read by
+;;;      the same single C walk (keys.c) that reads #:tile-id and the rest;
 ;;;   4. with `debug?: #t` (default #f), the debug overlay (below).
 ;;;
 ;;; The rounding rule: a world position x (an exact integer, a rational or
