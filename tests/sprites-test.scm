@@ -205,7 +205,14 @@
                                                         tilesets: (list solids)
                                                         entities: (list (list #:type 'ghost #:x 0 #:y 0 #:tile-id 1
                                                                               #:tileset 'solids))))))))
-  (test-error "make-scene's tilesets: must be tilesets" (make-scene tilesets: '("solids"))))
+  (test-error "make-scene's tilesets: must be tilesets" (make-scene tilesets: '("solids")))
+  (let ((s (make-sprite-scene tilesets: (list solids))))
+    (test "update-scene keeps a scene's tilesets" (list solids)
+          (scene-tilesets (update-scene s background: '(1 2 3))))
+    (test "and replaces them when given" (list quads solids)
+          (scene-tilesets (update-scene s tilesets: (list quads solids))))
+    (test "a scene operation keeps them" (list solids)
+          (scene-tilesets (scene-add-entity s (list #:x 0 #:y 0))))))
 
 (test-group "sprites: draw order"
   (define (at-3-3 . es) ((apply sp-draw es) 3 3))
