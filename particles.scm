@@ -126,6 +126,9 @@
                                  "not an integer or a list (low high) of integers, low <= high"
                                  "not a number or a list (low high) of numbers, low <= high"))))))
 
+  ;; At most this many particles per emitter: 48 MB of flonums.
+  (define particle-limit 1000000)
+
   (define (byte? x) (and (exact-integer? x) (<= 0 x 255)))
 
   (define (colour key c)
@@ -150,8 +153,10 @@
         (bad "size:" size "not a list (w h) of whole numbers of pixels, each at least 1"))
       (unless (or (not tile-id) (and (exact-integer? tile-id) (>= tile-id 0)))
         (bad "tile-id:" tile-id "not #f or a tile id"))
-      (unless (and (exact-integer? max-particles) (>= max-particles 0))
-        (bad "max-particles:" max-particles "not a whole number"))
+      (unless (and (exact-integer? max-particles) (<= 0 max-particles particle-limit))
+        (bad "max-particles:" max-particles
+             (sprintf "not a whole number from 0 to ~a (an emitter's particles are one vector)"
+                      particle-limit)))
       (unless (and (exact-integer? seed) (<= 1 seed 2147483646))
         (bad "seed:" seed "not an integer from 1 to 2147483646"))
       (let ((c0 (colour "color:" color)))

@@ -21,7 +21,8 @@
           (downstroke animation) (downstroke particles) (downstroke srfi-197))
 
   ;; The contract's pipeline (its section 2 and 3.4), one step after the
-  ;; other over every entity of the scene. The first step notes where each
+  ;; other over every entity of the scene, then the library's own last
+  ;; step, particles (particles.scm), which no other step reads. The first step notes where each
   ;; immovable body starts the frame, so that the entity step carries a
   ;; rider by what its platform did (physics.scm, record-frame-start).
   (define (contract-pipeline scene dt)

@@ -98,6 +98,11 @@
   (test "colour" "end-color: is (300 0 0), not a colour (r g b [a]) of integers 0-255"
         (pt-message (lambda () (make-emitter end-color: '(300 0 0)))))
   (test-error "an unknown keyword" (make-emitter speeed: 2))
+  (test "a million particles at most"
+        "max-particles: is 1000001, not a whole number from 0 to 1000000 (an emitter's particles are one vector)"
+        (pt-message (lambda () (make-emitter max-particles: 1000001))))
+  (test "a burst of a billion is cut to max-particles" 1000
+        (emitter-count (emitter-step (emitter-burst (make-emitter) 1000000000) 0 0 0 0)))
   (test "an #:emitter that is no emitter, in the step"
         "entity spark: #:emitter is 3, not an emitter (make-emitter)"
         (pt-message (lambda () (step-particles #f (plist->entity (list #:type 'spark #:emitter 3)) 16)))))
