@@ -2,7 +2,8 @@
 ;;; pipeline steps them only in a scene that has one; the renderer draws
 ;;; them (pixels read back).
 
-(import scheme (chicken base) (chicken condition) (chicken string) srfi-4
+(import scheme (chicken base) (chicken condition) (chicken string) (chicken file) srfi-4
+        (downstroke tilemap)
         (downstroke test) (downstroke entity) (downstroke scene) (downstroke particles)
         (downstroke pipeline) (downstroke sdl2) (downstroke renderer))
 (include-relative "pixels.scm")
@@ -144,4 +145,23 @@
             (list (px 11 9) (px 12 9) (px 11 10) (px 12 10)))
       (test "nothing around it" '((0 0 0 255) (0 0 0 255) (0 0 0 255))
             (list (px 10 9) (px 13 10) (px 11 11))))
+    ;; a white 4 x 4 tile: particles of it take their colour
+    (let* ((png (create-temporary-file ".png"))
+           (_ (write-solid-png! png 4 4 255 255 255))
+           (sheet (make-sheet-tileset png tile-width: 4 tile-height: 4 columns: 1 name: "dot"))
+           (tex (img-load-texture! r png))
+           (em (emitter-step (emitter-burst (make-emitter speed: 0 lifetime: 5 tile-id: 1
+                                                          color: '(200 100 50)) 1)
+                             8 8 0 0)))
+      (render-scene! r (make-sprite-scene background: '(0 0 0) tilesets: (list sheet)
+                                          entities: (list (list #:x 8 #:y 8 #:tileset 'dot #:emitter em)
+                                                          (list #:x 20 #:y 2 #:tileset 'dot #:tile-id 1)))
+                     textures: (list (cons (image-source (tileset-image sheet)) tex)))
+      (let ((px (renderer-pixels r)))
+        (test "a tile particle is the tile centred on it (6..9), in the particle's colour"
+              '((200 100 50 255) (200 100 50 255) (0 0 0 255) (0 0 0 255))
+              (list (px 6 6) (px 9 9) (px 5 6) (px 10 9)))
+        (test "and the sheet is unmodulated again for the sprite after it" '(255 255 255 255) (px 21 3)))
+      (destroy-texture! tex)
+      (delete-file png))
     (free-surface! target)))
