@@ -71,7 +71,7 @@ $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke
 $(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.camera.so $(BUILD)/downstroke.check.so
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.overlap.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.check.so:     $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so
+$(BUILD)/downstroke.check.so:     $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.particles.so
 $(BUILD)/downstroke.camera.so:    $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so
 $(BUILD)/downstroke.pipeline.so:  $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.particles.so $(BUILD)/downstroke.srfi-197.so
 $(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so

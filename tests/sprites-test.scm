@@ -237,6 +237,11 @@
           "entity hero: #:angle is \"90\", not a finite number")
         (scene-problems (make-sprite-scene entities: (list (list #:type 'hero #:x 0 #:y 0 #:flip-x #t
                                                                  #:angle "90")))))
+  (test "a tint and an emitter of the wrong kind are named"
+        '("entity spark: #:tint is (300 0 0), not (r g b) of integers 0-255"
+          "entity spark: #:emitter is burst, not an emitter (make-emitter)")
+        (scene-problems (make-sprite-scene entities: (list (list #:type 'spark #:x 0 #:y 0 #:tint '(300 0 0)
+                                                                 #:emitter 'burst)))))
   (test "the new keys themselves are no problem" '()
         (scene-problems (make-sprite-scene
                          entities: (list (list #:x 0 #:y 0 #:sprite-offset-x 1 #:sprite-offset-y 1
