@@ -7,7 +7,8 @@
 ;;;     gravity entity without #:width or #:height);
 ;;;   - a value of the wrong type (a position that is not a number, a
 ;;;     #:skip-pipelines that is not a list of step symbols, an unknown
-;;;     #:collision-mode, #:tags that are not a list).
+;;;     #:collision-mode, #:tags that are not a list, a #:tint that is not
+;;;     (r g b), an #:emitter that is not one).
 ;;; Nothing here runs in the per-frame pipeline: (downstroke scene)'s
 ;;; scene-problems is called by hand, by make-scene and update-scene when
 ;;; (scene-checks) is true (game-run! turns it on for a debug? game), and
@@ -19,6 +20,7 @@
 
   (import scheme (chicken base) (chicken format) (chicken keyword) (chicken port)
           (only (downstroke keywords) edit-distance)
+          (only (downstroke particles) emitter?)
           (downstroke entity))
 
   ;; Every key the library's steps, renderer and loaders read or write.
@@ -28,13 +30,18 @@
       #:frame-start #:skip-pipelines #:collision-mode #:tween
       #:group-id #:group-origin? #:group-local-x #:group-local-y
       #:animations #:anim-name #:anim-frame #:anim-tick #:anim-duration #:anim-finished?
-      #:tile-id #:color #:facing))
+      #:tile-id #:color #:facing
+      ;; sprites and particles (renderer.scm, particles.scm)
+      #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y #:flip-x? #:flip-y?
+      #:angle #:scale #:scale-x #:scale-y #:alpha #:tint #:tileset #:z #:emitter))
 
   (define pipeline-steps
     '(tweens frame-start acceleration gravity velocity-x tile-collisions-x velocity-y
-      tile-collisions-y on-solid entity-collisions animation))
+      tile-collisions-y on-solid entity-collisions animation particles))
 
-  (define number-keys '(#:x #:y #:width #:height #:vx #:vy #:ay))
+  (define number-keys '(#:x #:y #:width #:height #:vx #:vy #:ay
+                        #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y
+                        #:angle #:scale #:scale-x #:scale-y #:alpha #:z))
 
   (define (kw k) (sprintf "~s" k))
 
@@ -117,7 +124,19 @@
                  (list (problem "#:collision-mode is ~s, not discrete or swept" mode))
                  '()))
            (let ((tags (entity-ref e #:tags '())))
-             (if (list? tags) '() (list (problem "#:tags is ~s, not a list" tags))))))))
+             (if (list? tags) '() (list (problem "#:tags is ~s, not a list" tags))))
+           ;; drawing values the renderer would refuse
+           (let ((tint (entity-ref e #:tint #f)))
+             (if (or (not tint) (and (list? tint) (= 3 (length tint)) (all-bytes? tint)))
+                 '()
+                 (list (problem "#:tint is ~s, not (r g b) of integers 0-255" tint))))
+           (let ((em (entity-ref e #:emitter #f)))
+             (if (or (not em) (emitter? em))
+                 '()
+                 (list (problem "#:emitter is ~s, not an emitter (make-emitter)" em))))))))
+
+  (define (all-bytes? l)
+    (or (null? l) (and (exact-integer? (car l)) (<= 0 (car l) 255) (all-bytes? (cdr l)))))
 
   ;; Every problem of every entity of a list, in order.
   (define (entity-list-problems entities)

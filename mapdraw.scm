@@ -61,7 +61,8 @@
 
 (module (downstroke mapdraw)
   (render-map-layers! screen-coordinate tileset-source-rect layer-camera
-   check-map-orientation tile-animation-frame object-screen-box floor-int ceiling-int)
+   check-map-orientation tile-animation-frame object-screen-box floor-int ceiling-int
+   sine cosine tint-components)
 
   (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
           (downstroke sdl2) (downstroke map))

@@ -18,10 +18,11 @@
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign)
           (downstroke scene) (downstroke physics) (downstroke tween)
-          (downstroke animation) (downstroke srfi-197))
+          (downstroke animation) (downstroke particles) (downstroke srfi-197))
 
   ;; The contract's pipeline (its section 2 and 3.4), one step after the
-  ;; other over every entity of the scene. The first step notes where each
+  ;; other over every entity of the scene, then the library's own last
+  ;; step, particles (particles.scm), which no other step reads. The first step notes where each
   ;; immovable body starts the frame, so that the entity step carries a
   ;; rider by what its platform did (physics.scm, record-frame-start).
   (define (contract-pipeline scene dt)
@@ -37,7 +38,8 @@
       (scene-map-entities _ (cut detect-on-solid           <> <> dt))
       (scene-transform-entities _ resolve-entity-collisions)
       (scene-transform-entities _ sync-groups)
-      (scene-map-entities _ (cut apply-animation           <> <> dt))))
+      (scene-map-entities _ (cut apply-animation           <> <> dt))
+      (scene-map-entities _ (cut step-particles            <> <> dt))))
 
   ;;; The default pipeline runs only the steps some entity of the scene
   ;;; needs: one walk over each entity finds out which (`pipeline-needs`),
@@ -53,15 +55,17 @@
   (define need-animation 16)    ; an entity has #:animations
   (define need-support 32)      ; an entity has #:solid? (it may hold others up)
   (define need-start 64)        ; an entity has #:immovable? (a platform may carry)
+  (define need-particles 128)   ; an entity has an #:emitter
 
   ;; The walk below, in C: it reads every pair of every entity each frame,
   ;; which in Scheme was a twentieth of a crowd scene's time. Bit i is set
   ;; when some entity holds need-keys[i] with a true value, except for
   ;; #:solid? (bit 2), whose entities are counted in bits 8-9 (0, 1, 2 or
-  ;; more). Bit 5 (#:immovable?) is need-start. -1 when an entity is not a
+  ;; more). Bit 5 (#:immovable?) is need-start, bit 6 (#:emitter)
+  ;; need-particles. -1 when an entity is not a
   ;; list of pairs: the Scheme walk then raises the error.
   (foreign-declare "#include \"needs.c\"")
-  (define need-keys (vector #:tween #:gravity? #:solid? #:group-id #:animations #:immovable?))
+  (define need-keys (vector #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter))
   (define c-needs (foreign-lambda scheme-object "ds_pipeline_needs" scheme-object scheme-object))
 
   (define (pipeline-needs entities)
@@ -69,7 +73,8 @@
       (if (fx< c 0)
           (scheme-pipeline-needs entities)
           (fxior (fxior (fxand c (fxior (fxior need-tweens need-ground) (fxior need-groups need-animation)))
-                        (if (fx= 0 (fxand c 32)) 0 need-start))
+                        (fxior (if (fx= 0 (fxand c 32)) 0 need-start)
+                               (if (fx= 0 (fxand c 64)) 0 need-particles)))
                  (case (fxshr c 8)
                    ((0) 0)
                    ((1) need-support)
@@ -92,6 +97,7 @@
                         ((eq? k #:group-id) (walk (cdr ps) (fxior bits need-groups) solid?))
                         ((eq? k #:animations) (walk (cdr ps) (fxior bits need-animation) solid?))
                         ((eq? k #:immovable?) (walk (cdr ps) (fxior bits need-start) solid?))
+                        ((eq? k #:emitter) (walk (cdr ps) (fxior bits need-particles) solid?))
                         (else (walk (cdr ps) bits solid?)))))))))
 
   (define (needs? bits need) (not (fx= 0 (fxand bits need))))
@@ -128,7 +134,9 @@
              (when-needed need-pairs (cut scene-transform-entities <> resolve-entity-collisions) _)
              (when-needed need-groups (cut scene-transform-entities <> sync-groups) _)
              (when-needed need-animation
-                          (cut scene-map-entities <> (lambda (s e) (apply-animation s e dt))) _))))
+                          (cut scene-map-entities <> (lambda (s e) (apply-animation s e dt))) _)
+             (when-needed need-particles
+                          (cut scene-map-entities <> (lambda (s e) (step-particles s e dt))) _))))
 
   ;; Tile ground detection may join the motion pass (one walk instead of
   ;; two) only when it reads nothing but the entity itself and the map:

@@ -20,7 +20,21 @@
 ;;;      cannot be drawn (no tileset or texture) falls through to #:color.
 ;;;      #:tile-id numbers tiles as gids of the scene's tileset: local tile
 ;;;      id + the tileset's first gid (1 for a map's first tileset), the same
-;;;      numbers the map's cells use;
+;;;      numbers the map's cells use.
+;;;      Sprite keys (docs/rendering.org, "Sprites"), all optional: the
+;;;      sprite is drawn from #:x + #:sprite-offset-x (y likewise), scaled
+;;;      by #:scale-x / #:scale-y (each defaulting to #:scale, 1) and
+;;;      turned #:angle degrees clockwise about its origin (#:origin-x,
+;;;      #:origin-y: sprite pixels from its top-left, default its centre),
+;;;      mirrored by #:flip-x? / #:flip-y?, with #:alpha (0-255) and #:tint
+;;;      (r g b) as the texture's alpha and colour modulation, reset after
+;;;      the copy; #:tileset names another sheet (a tileset of the scene's
+;;;      tilesets:, its own tileset or its map's, by name, or the tileset
+;;;      itself). A box honours #:alpha. An entity with an #:emitter has
+;;;      its particles drawn first (particles.scm). When any entity has a
+;;;      #:z, entities are drawn by #:z (default 0), ties in list order.
+;;;      An entity with none of these keys is drawn as before them, read by
+;;;      the same single C walk (keys.c) that reads #:tile-id and the rest;
 ;;;   4. with `debug?: #t` (default #f), the debug overlay (below).
 ;;;
 ;;; The rounding rule: a world position x (an exact integer, a rational or
@@ -94,10 +108,13 @@
    check-map-orientation)
 
   (import (downstroke keywords) (only (downstroke check) report-entity-problems!))
-  (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
+  (import scheme (chicken base) (chicken format) (chicken sort) (chicken fixnum) (chicken foreign)
+          srfi-4
           (downstroke sdl2) (downstroke entity) (downstroke scene)
           (downstroke map) (downstroke mapdraw)
-          (only (downstroke physics) entity-cell-span tunnel-risk?))
+          (only (downstroke physics) entity-cell-span tunnel-risk?)
+          (only (downstroke particles) emitter? emitter-for-each emitter-tile-id emitter-size
+                emitter-color emitter-end-color))
 
   ;; The texture for an image path, from a procedure or an alist; #f if none.
   (define (lookup-texture textures path)
@@ -131,34 +148,221 @@
       (error who "#:color must be (r g b [a])" c))
     (if (= (length c) 3) (append c '(255)) c))
 
-  ;; One entity (see the head of this file). tileset/texture: the sprite
-  ;; sheet, either may be #f.
-  (define (render-entity! r e cx cy tileset texture)
-    (let ((tile-id (entity-ref e #:tile-id #f))
-          (color (entity-ref e #:color #f))
-          (x (entity-ref e #:x 0))
-          (y (entity-ref e #:y 0)))
-      (cond ((and tile-id tileset texture
-                  (>= (- tile-id (tileset-first-gid tileset)) 0))
-             (receive (sx sy sw sh)
-                 (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
-               (render-copy! r texture (make-rect sx sy sw sh)
-                             (make-rect (screen-coordinate x cx) (screen-coordinate y cy) sw sh)
-                             flip: (if (eqv? (entity-ref e #:facing 1) -1) '(horizontal) '()))))
-            (color
-             (let* ((c (color-components 'render-scene! color))
-                    (x0 (screen-coordinate x cx))
-                    (y0 (screen-coordinate y cy))
-                    (x1 (screen-coordinate (+ x (entity-ref e #:width 0)) cx))
-                    (y1 (screen-coordinate (+ y (entity-ref e #:height 0)) cy)))
-               (when (and (> x1 x0) (> y1 y0))
-                 (render-draw-blend-mode-set! r (if (< (list-ref c 3) 255) 'blend 'none))
-                 (apply render-draw-color-set! r c)
-                 (render-fill-rect! r (make-rect x0 y0 (- x1 x0) (- y1 y0))))))
-            (else (void)))))
+  ;; The keys an entity is drawn by, read in one C walk (keys.c) instead
+  ;; of an assq each: the first five are those of plain entities, the
+  ;; rest the sprite keys. An entity holding none of the sprite keys is
+  ;; drawn by the code of before them; the others by draw-sprite!. The
+  ;; bit of each key in the walk's answer is its index here.
+  (foreign-declare "#include \"keys.c\"")
+  (define entity-keys
+    (vector #:tile-id #:color #:x #:y #:facing
+            #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y #:flip-x? #:flip-y?
+            #:angle #:scale #:scale-x #:scale-y #:alpha #:tint #:tileset #:emitter))
+  (define key-values (make-vector (vector-length entity-keys) #f))
+  (define read-keys! (foreign-lambda scheme-object "ds_entity_keys" scheme-object scheme-object scheme-object))
+  (define any-has-key? (foreign-lambda scheme-object "ds_any_has_key" scheme-object scheme-object))
+  (define plain-keys 32)                ; bits below this: the first five keys
+  (define bit-offset-x 32) (define bit-offset-y 64) (define bit-origin-x 128) (define bit-origin-y 256)
+  (define bit-flip-x 512) (define bit-flip-y 1024) (define bit-angle 2048) (define bit-scale 4096)
+  (define bit-scale-x 8192) (define bit-scale-y 16384) (define bit-alpha 32768) (define bit-tint 65536)
+  (define bit-tileset 131072) (define bit-emitter 262144)
 
-  (define (render-entities! r entities cx cy tileset texture)
-    (for-each (lambda (e) (render-entity! r e cx cy tileset texture)) entities))
+  ;; A key's number, checked: the error names the entity and the key.
+  (define (sprite-number e key default)
+    (let ((v (entity-ref e key default)))
+      (if (and (real? v) (or (exact? v) (finite? v)))
+          v
+          (error 'render-scene! (sprintf "entity ~a: ~s is ~s, not a finite number"
+                                         (entity-label e) key v)))))
+
+  (define (byte-of x) (max 0 (min 255 (round-int x))))
+
+  ;; One entity (see the head of this file). tileset/texture: the scene's
+  ;; sprite sheet, either may be #f; sheet-for: (entity name) -> (values
+  ;; tileset texture) for #:tileset.
+  (define (render-entity! r e cx cy tileset texture #!optional (sheet-for no-sheets))
+    (draw-entity! r e cx cy tileset texture sheet-for))
+
+  (define (draw-entity! r e cx cy tileset texture sheet-for)
+    (let ((mask (read-keys! e entity-keys key-values)))
+      (cond ((fx< mask 0)               ; not an alist: entity-ref raises the error
+             (draw-plain! r (entity-ref e #:tile-id #f) (entity-ref e #:color #f)
+                          (entity-ref e #:x 0) (entity-ref e #:y 0) (entity-ref e #:facing 1)
+                          e cx cy tileset texture))
+            ((fx< mask plain-keys)
+             (draw-plain! r (vector-ref key-values 0) (vector-ref key-values 1)
+                          (or (vector-ref key-values 2) 0) (or (vector-ref key-values 3) 0)
+                          (vector-ref key-values 4) e cx cy tileset texture))
+            (else (draw-sprite! r e mask cx cy tileset texture sheet-for)))))
+
+  ;; An entity without sprite keys: as before them.
+  (define (draw-plain! r tile-id color x y facing e cx cy tileset texture)
+    (cond ((and tile-id tileset texture
+                (>= (- tile-id (tileset-first-gid tileset)) 0))
+           (receive (sx sy sw sh)
+               (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
+             (render-copy! r texture (make-rect sx sy sw sh)
+                           (make-rect (screen-coordinate x cx) (screen-coordinate y cy) sw sh)
+                           flip: (if (eqv? facing -1) '(horizontal) '()))))
+          (color (fill-box! r (color-components 'render-scene! color) x y
+                            (entity-ref e #:width 0) (entity-ref e #:height 0) cx cy))
+          (else (void))))
+
+  ;; A filled world box x y w h of colour c (r g b a), by the rounding rule.
+  (define (fill-box! r c x y w h cx cy)
+    (let ((x0 (screen-coordinate x cx))
+          (y0 (screen-coordinate y cy))
+          (x1 (screen-coordinate (+ x w) cx))
+          (y1 (screen-coordinate (+ y h) cy)))
+      (when (and (> x1 x0) (> y1 y0))
+        (render-draw-blend-mode-set! r (if (< (list-ref c 3) 255) 'blend 'none))
+        (apply render-draw-color-set! r c)
+        (render-fill-rect! r (make-rect x0 y0 (- x1 x0) (- y1 y0))))))
+
+  (define (no-sheets e name)
+    (error 'render-scene! (sprintf "entity ~a: #:tileset ~s, but render-entity! was given no sheets"
+                                   (entity-label e) name)))
+
+  ;; The general path: an entity with some of the sprite keys.
+  (define (draw-sprite! r e mask cx cy tileset texture sheet-for)
+    (define (has? bit) (not (fx= 0 (fxand mask bit))))
+    (when (has? bit-emitter)
+      (draw-particles! r e cx cy tileset texture sheet-for))
+    (receive (tileset texture)
+        (if (has? bit-tileset)
+            (sheet-for e (entity-ref e #:tileset))
+            (values tileset texture))
+      (let* ((tile-id (entity-ref e #:tile-id #f))
+             (alpha (if (has? bit-alpha) (byte-of (sprite-number e #:alpha 255)) 255)))
+        (cond ((and tile-id tileset texture
+                    (>= (- tile-id (tileset-first-gid tileset)) 0))
+               (when (> alpha 0)
+                 (receive (sx sy sw sh)
+                     (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
+                   (draw-tile! r e mask texture sx sy sw sh alpha cx cy))))
+              ((entity-ref e #:color #f)
+               => (lambda (color)
+                    ;; a box: #:alpha multiplies its colour's alpha; the
+                    ;; offset, flips, rotation, scale and tint are for sprites
+                    (let ((c (color-components 'render-scene! color)))
+                      (fill-box! r (if (= alpha 255)
+                                       c
+                                       (list (car c) (cadr c) (caddr c)
+                                             (quotient (+ (* (cadddr c) alpha) 127) 255)))
+                                 (entity-ref e #:x 0) (entity-ref e #:y 0)
+                                 (entity-ref e #:width 0) (entity-ref e #:height 0) cx cy))))
+              (else (void))))))
+
+  ;; A tile sw x sh drawn for e: its top-left at #:x + #:sprite-offset-x
+  ;; (y likewise), scaled by #:scale-x / #:scale-y (each defaulting to
+  ;; #:scale, 1) about the origin (#:origin-x #:origin-y, sprite pixels
+  ;; from the top-left, default the centre), mirrored by #:flip-x? (or
+  ;; #:facing -1, not both) and #:flip-y?, turned #:angle degrees
+  ;; clockwise about the origin, colour-modulated by #:tint and
+  ;; alpha-modulated by #:alpha (both reset after the copy).
+  (define (draw-tile! r e mask texture sx sy sw sh alpha cx cy)
+    (define (has? bit) (not (fx= 0 (fxand mask bit))))
+    (define (num bit key default) (if (has? bit) (sprite-number e key default) default))
+    (let* ((scale (num bit-scale #:scale 1))
+           (kx (num bit-scale-x #:scale-x scale))
+           (ky (num bit-scale-y #:scale-y scale))
+           (ox (num bit-origin-x #:origin-x (/ sw 2)))
+           (oy (num bit-origin-y #:origin-y (/ sh 2)))
+           (angle (num bit-angle #:angle 0))
+           ;; the origin in the world, and the scaled box about it
+           (px (+ (entity-ref e #:x 0) (num bit-offset-x #:sprite-offset-x 0) ox))
+           (py (+ (entity-ref e #:y 0) (num bit-offset-y #:sprite-offset-y 0) oy))
+           (w (* kx sw)) (h (* ky sh))
+           ;; the box's centre, turned about the origin: SDL turns a copy
+           ;; about its own centre
+           (dx (- (/ w 2) (* kx ox))) (dy (- (/ h 2) (* ky oy)))
+           (mx (if (zero? angle) (+ px dx) (+ px (- (* dx (cosine angle)) (* dy (sine angle))))))
+           (my (if (zero? angle) (+ py dy) (+ py (* dx (sine angle)) (* dy (cosine angle)))))
+           (x0 (screen-coordinate (- mx (/ w 2)) cx))
+           (y0 (screen-coordinate (- my (/ h 2)) cy))
+           (x1 (screen-coordinate (+ mx (/ w 2)) cx))
+           (y1 (screen-coordinate (+ my (/ h 2)) cy))
+           (flip-x? (not (eq? (and (has? bit-flip-x) #t) (eqv? (entity-ref e #:facing 1) -1))))
+           (tint (and (has? bit-tint) (entity-ref e #:tint))))
+      (when (or (< kx 0) (< ky 0))
+        (error 'render-scene! (sprintf "entity ~a: a negative scale (~s x ~s); mirror with #:flip-x? / #:flip-y?"
+                                       (entity-label e) kx ky)))
+      (when (and (> x1 x0) (> y1 y0))
+        (when tint
+          (let ((c (tint-components tint)))
+            (unless (and (list? c) (= (length c) 4))
+              (error 'render-scene! (sprintf "entity ~a: #:tint is ~s, not (r g b)" (entity-label e) tint)))
+            (texture-color-mod-set! texture (byte-of (car c)) (byte-of (cadr c)) (byte-of (caddr c)))))
+        (when (< alpha 255) (texture-alpha-mod-set! texture alpha))
+        (dynamic-wind
+         void
+         (lambda ()
+           (render-copy! r texture (make-rect sx sy sw sh) (make-rect x0 y0 (- x1 x0) (- y1 y0))
+                         angle: angle
+                         flip: (append (if flip-x? '(horizontal) '())
+                                       (if (has? bit-flip-y) '(vertical) '()))))
+         (lambda ()
+           (when tint (texture-color-mod-set! texture 255 255 255))
+           (when (< alpha 255) (texture-alpha-mod-set! texture 255)))))))
+
+  ;; An emitter's particles (particles.scm), in world coordinates: each a
+  ;; filled box of the emitter's size, or its tile of the entity's sheet,
+  ;; centred on the particle, in the particle's colour.
+  (define (draw-particles! r e cx cy tileset texture sheet-for)
+    (let* ((em (entity-ref e #:emitter))
+           (_ (unless (emitter? em)
+                (error 'render-scene! (sprintf "entity ~a: #:emitter is ~s, not an emitter (make-emitter)"
+                                               (entity-label e) em))))
+           (tile-id (emitter-tile-id em)))
+      (if tile-id
+          (receive (tileset texture)
+              (if (entity-ref e #:tileset #f)
+                  (sheet-for e (entity-ref e #:tileset))
+                  (values tileset texture))
+            (when (and tileset texture (>= (- tile-id (tileset-first-gid tileset)) 0))
+              (receive (sx sy sw sh) (tileset-source-rect tileset (- tile-id (tileset-first-gid tileset)))
+                (dynamic-wind
+                 void
+                 (lambda ()
+                   (let ((src (make-rect sx sy sw sh)) (hw (/ sw 2)) (hh (/ sh 2)))
+                     (emitter-for-each
+                      em
+                      (lambda (x y red green blue alpha)
+                        (texture-color-mod-set! texture red green blue)
+                        (texture-alpha-mod-set! texture alpha)
+                        (render-copy! r texture src
+                                      (make-rect (screen-coordinate (- x hw) cx)
+                                                 (screen-coordinate (- y hh) cy)
+                                                 sw sh))))))
+                 (lambda ()
+                   (texture-color-mod-set! texture 255 255 255)
+                   (texture-alpha-mod-set! texture 255))))))
+          (let ((w (car (emitter-size em))) (h (cadr (emitter-size em))))
+            ;; one blend mode for all; the colour set only when it changes
+            (let ((last-colour -1) (hw (/ w 2)) (hh (/ h 2)))
+              (render-draw-blend-mode-set!
+               r (if (and (= 255 (cadddr (emitter-color em))) (= 255 (cadddr (emitter-end-color em))))
+                     'none
+                     'blend))
+              (emitter-for-each
+               em
+               (lambda (x y red green blue alpha)
+                 (let ((x0 (screen-coordinate (- x hw) cx)) (y0 (screen-coordinate (- y hh) cy))
+                       (colour (+ alpha (* 256 (+ blue (* 256 (+ green (* 256 red))))))))
+                   (unless (= colour last-colour)
+                     (set! last-colour colour)
+                     (render-draw-color-set! r red green blue alpha))
+                   (render-fill-rect! r (make-rect x0 y0 (- (screen-coordinate (+ x hw) cx) x0)
+                                                   (- (screen-coordinate (+ y hh) cy) y0)))))))))))
+
+  ;; Entities in list order, or, when one has #:z, by #:z (default 0),
+  ;; ties in list order (a stable sort).
+  (define (render-entities! r entities cx cy tileset texture #!optional (sheet-for no-sheets))
+    (for-each (lambda (e) (draw-entity! r e cx cy tileset texture sheet-for))
+              (if (any-has-key? entities #:z)
+                  (map cdr (sort (map (lambda (e) (cons (sprite-number e #:z 0) e)) entities)
+                                 (lambda (a b) (< (car a) (car b)))))
+                  entities)))
 
   ;;; ------------------------------------------------------------------
   ;;; Scenes
@@ -323,10 +527,47 @@
                                   (or (scene-tileset-texture scene)
                                       (and sprite-tileset (tileset-image sprite-tileset)
                                            (lookup-texture textures
-                                                           (image-source (tileset-image sprite-tileset))))))
+                                                           (image-source (tileset-image sprite-tileset)))))
+                                  (lambda (e name) (entity-sheet scene tm sprite-tileset textures e name)))
                 (when debug?
                   (render-debug-overlay! r scene view-width: vw view-height: vh)))))
           (void)))))
+
+  ;; An entity's #:tileset: a tileset, or the name (a string or a symbol)
+  ;; of one of the scene's tilesets:, else of its map's tilesets. Its
+  ;; texture is the one `textures` gives for its image (or the scene's
+  ;; tileset-texture for the scene's own sprite tileset). (values tileset
+  ;; texture); an unknown name or a sheet without texture is an error
+  ;; naming the entity.
+  (define (scene-sheets scene tm sprite-tileset)
+    (append (scene-tilesets scene)
+            (if (and sprite-tileset (not (memq sprite-tileset (scene-tilesets scene)))
+                     (not (and tm (memq sprite-tileset (tilemap-tilesets tm)))))
+                (list sprite-tileset)
+                '())
+            (if tm (tilemap-tilesets tm) '())))
+
+  (define (entity-sheet scene tm sprite-tileset textures e name)
+    (let* ((key (if (symbol? name) (symbol->string name) name))
+           (ts (cond ((tileset? name) name)
+                     ((string? key)
+                      (let find ((tss (scene-sheets scene tm sprite-tileset)))
+                        (cond ((null? tss) #f)
+                              ((equal? (tileset-name (car tss)) key) (car tss))
+                              (else (find (cdr tss))))))
+                     (else #f))))
+      (unless ts
+        (error 'render-scene!
+               (sprintf "entity ~a: #:tileset ~s names no tileset of the scene (its tilesets: ~s)"
+                        (entity-label e) name
+                        (map tileset-name (scene-sheets scene tm sprite-tileset)))))
+      (let ((tex (or (and (tileset-image ts) (lookup-texture textures (image-source (tileset-image ts))))
+                     (and (eq? ts sprite-tileset) (scene-tileset-texture scene)))))
+        (unless tex
+          (error 'render-scene!
+                 (sprintf "entity ~a: no texture for the image ~s of its #:tileset ~s (load it with game-load-tilesets!, or pass textures:)"
+                          (entity-label e) (and (tileset-image ts) (image-source (tileset-image ts))) name)))
+        (values ts tex))))
 
   (define (with-zoom r zoom draw)
     (if (= zoom 1)

@@ -4,7 +4,7 @@
 
 (module (downstroke scene)
   (make-scene make-sprite-scene update-scene scene?
-   scene-entities scene-tilemap scene-tileset scene-tileset-texture
+   scene-entities scene-tilemap scene-tileset scene-tileset-texture scene-tilesets
    scene-camera scene-camera-target scene-background scene-engine-update
    scene-collision-mode *default-collision-mode*
    scene-solid-entities
@@ -27,7 +27,7 @@
   ;; every new scene starts without it.
   (define-record-type scene
     (%make-scene entities tilemap tileset tileset-texture camera camera-target
-                 background engine-update collision-mode solids)
+                 background engine-update collision-mode tilesets solids)
     scene?
     (entities scene-entities)
     (tilemap scene-tilemap)
@@ -38,6 +38,7 @@
     (background scene-background)
     (engine-update scene-engine-update)
     (collision-mode scene-collision-mode)
+    (tilesets scene-tilesets)
     (solids scene-solids-cache scene-solids-cache-set!))
 
   (define (check-engine-update eu)
@@ -83,24 +84,34 @@
   ;; otherwise (see physics.scm and docs/physics.org).
   (define *default-collision-mode* 'swept)
 
+  ;; tilesets: more sprite sheets, which an entity names with #:tileset
+  ;; (docs/rendering.org, "Sprites").
+  (define (check-tilesets who tss)
+    (unless (and (list? tss) (let all ((l tss)) (or (null? l) (and (tileset? (car l)) (all (cdr l))))))
+      (error who "tilesets: must be a list of tilesets (load-tileset, make-sheet-tileset)" tss))
+    tss)
+
   ;; camera-target: the tag of the entity the camera centres on after each
   ;; update: ('camera-target unless given), or #f for a camera that stays put.
   (define/keywords (make-scene #!key (entities '()) (tilemap #f) (tileset #f)
                       (tileset-texture #f) (camera (make-camera))
                       (camera-target 'camera-target) (background #f)
-                      (engine-update #f) (collision-mode *default-collision-mode*))
+                      (engine-update #f) (collision-mode *default-collision-mode*)
+                      (tilesets '()))
     (%make-scene (check-entities entities) tilemap tileset tileset-texture
                  camera camera-target background
                  (check-engine-update engine-update)
-                 (check-collision-mode collision-mode) #f))
+                 (check-collision-mode collision-mode)
+                 (check-tilesets 'make-scene tilesets) #f))
 
   ;; A scene with no map: sprites over a background.
   (define/keywords (make-sprite-scene #!key (entities '()) (tileset #f) (tileset-texture #f)
                              (camera (make-camera)) (camera-target 'camera-target)
-                             (background #f) (engine-update #f))
+                             (background #f) (engine-update #f) (tilesets '()))
     (make-scene entities: entities tileset: tileset tileset-texture: tileset-texture
                 camera: camera camera-target: camera-target background: background
-                engine-update: engine-update collision-mode: *default-collision-mode*))
+                engine-update: engine-update collision-mode: *default-collision-mode*
+                tilesets: tilesets))
 
   ;; A marker for "keyword not given", distinct from every value a user passes.
   (define unset (list 'unset))
@@ -108,7 +119,8 @@
 
   (define/keywords (update-scene s #!key (entities unset) (tilemap unset) (tileset unset)
                         (tileset-texture unset) (camera unset) (camera-target unset)
-                        (background unset) (engine-update unset) (collision-mode unset))
+                        (background unset) (engine-update unset) (collision-mode unset)
+                        (tilesets unset))
     (let ((pick (lambda (new old) (if (given? new) new old))))
       (%make-scene (if (given? entities) (check-entities entities (quote update-scene)) (scene-entities s))
                    (pick tilemap (scene-tilemap s))
@@ -123,6 +135,7 @@
                    (if (given? collision-mode)
                        (check-collision-mode collision-mode)
                        (scene-collision-mode s))
+                   (if (given? tilesets) (check-tilesets 'update-scene tilesets) (scene-tilesets s))
                    ;; the cache survives only when the entity list does
                    (if (given? entities) #f (scene-solids-cache s)))))
 
@@ -130,7 +143,7 @@
   (define (with-entities s entities)
     (%make-scene entities (scene-tilemap s) (scene-tileset s) (scene-tileset-texture s)
                  (scene-camera s) (scene-camera-target s) (scene-background s)
-                 (scene-engine-update s) (scene-collision-mode s) #f))
+                 (scene-engine-update s) (scene-collision-mode s) (scene-tilesets s) #f))
 
   (define (scene-solid-entities s)
     (or (scene-solids-cache s)

@@ -16,14 +16,23 @@
                                     entities: (list (list #:type 'square #:x 150 #:y 110
                                                           #:width 20 #:height 20
                                                           #:color '(240 200 60))))))
-   ;; Velocity is intent: set it from the arrows, the pipeline moves the square.
+   ;; Velocity is intent: set it from the arrows, the pipeline moves the
+   ;; square; a velocity that would take it past an edge of the 320 x 240
+   ;; view is cut so that it stops there.
    update: (lambda (game dt)
              (let ((input (game-input game)))
                (game-scene-set! game (scene-map-entities
                                       (game-scene game)
                                       (lambda (scene square)
-                                        (entity-set (entity-set square #:vx (axis input 'left 'right))
-                                                    #:vy (axis input 'up 'down)))))))))
+                                        (entity-set (entity-set square #:vx (inside (entity-ref square #:x)
+                                                                                    (axis input 'left 'right)
+                                                                                    (- 320 20)))
+                                                    #:vy (inside (entity-ref square #:y)
+                                                                 (axis input 'up 'down)
+                                                                 (- 240 20))))))))))
+
+;; A velocity v from position p, cut to stay within 0 .. limit.
+(define (inside p v limit) (- (max 0 (min limit (+ p v))) p))
 
 (demo-run! game)
 (let ((square (car (scene-entities (game-scene game)))))

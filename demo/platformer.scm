@@ -4,19 +4,48 @@
 ;;;                              through a ledge, escape quits
 ;;; The wooden ledges are one-way tiles: tiles.tsx gives their tile the bool
 ;;; property one-way, so the player jumps up through them and lands on top.
+;;; The towers behind are a background layer drawn at 35% opacity (the
+;;; layer's opacity in Tiled), so they read as scenery, and it does not
+;;; collide (its property collides is false). The coins are tile objects
+;;; of the object layer "coins", loaded as entities: touching one takes
+;;; it, with a sound and a puff of sparkles (particles), and the count is
+;;; drawn as text.
 ;;; The level is demo/levels/platformer.tmx (open it in Tiled); the art and
 ;;; sounds come from tools/make-assets.scm (make assets).
 (include "demo/common.scm")
-(import (chicken condition) (downstroke srfi-197)
+(import (chicken condition) (chicken file) (downstroke srfi-197)
         (downstroke entity) (downstroke scene) (downstroke tilemap)
-        (downstroke physics) (downstroke input) (downstroke sound) (downstroke tween))
+        (downstroke physics) (downstroke input) (downstroke sound) (downstroke tween)
+        (downstroke overlap) (downstroke particles) (downstroke text))
 
 (define walk-speed 2)                   ; px per frame
+(define font-file "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf")
 (define start-x 32)
 (define start-y 192)
 
 ;; Sprite frames: gids of sprites.tsx, the level's second tileset (first gid 9).
 (define idle 9) (define walk-a 10) (define walk-b 11) (define in-air 12)
+(define coin-front 21) (define coin-turning 22) (define coin-edge 23)
+
+;; A coin of the map, as game-load-scene! made it (#:type coin, its box,
+;; #:tile-id 21), made to spin.
+(define (spinning coin)
+  (entity-set* coin
+               #:tags '(coin)
+               #:animations (list (list (cons #:name 'spin)
+                                        (cons #:frames (list coin-front coin-turning coin-edge coin-turning))
+                                        (cons #:duration 6)))
+               #:anim-name 'spin))
+
+;; Where a coin was taken: 12 sparkles thrown up, pale yellow fading out.
+(define (sparkles coin)
+  (list #:type 'sparkles #:x (+ (entity-ref coin #:x) 8) #:y (+ (entity-ref coin #:y) 8)
+        #:width 0 #:height 0
+        #:emitter (emitter-burst (make-emitter speed: '(1/2 2) angle: '(200 340) gravity: 1/10
+                                               lifetime: '(12 24) size: '(3 3)
+                                               color: '(255 250 180) end-color: '(255 200 40 0)
+                                               seed: (entity-ref coin #:object-id 1))
+                                 12)))
 
 (define player
   (list #:type 'player #:tags '(player camera-target)
@@ -24,17 +53,22 @@
         #:gravity? #t #:solid? #t #:tile-id idle))
 
 ;; Solid and immovable: whoever lands on it rides along (see docs/physics.org).
+;; It is drawn as the ledge tile of the map's first tileset, "tiles" (gid
+;; 4, a plank along the top of a 16 x 16 tile), stretched to its 48 px.
 (define platform
   (list #:type 'platform #:x 240 #:y 192 #:width 48 #:height 8 #:vx 1
         #:solid? #t #:immovable? #t #:min-x 240 #:max-x 320
+        #:tileset "tiles" #:tile-id 4 #:scale-x 3 #:origin-x 0 #:origin-y 0
         #:color '(196 146 84)))
 
 ;; A lift over the second pit: a tween moves it up and down for ever (its
 ;; velocity steps are skipped), and it carries its rider by what it did.
+;; It is the stone tile (gid 8) squeezed to 32 x 8.
 (define lift
   (let ((e (plist->entity
             (list #:type 'lift #:x 560 #:y 200 #:width 32 #:height 8
                   #:solid? #t #:immovable? #t #:color '(150 150 170)
+                  #:tileset "tiles" #:tile-id 8 #:scale-x 2 #:scale-y 1/2 #:origin-x 0 #:origin-y 0
                   #:skip-pipelines '(velocity-x velocity-y)))))
     (entity-set e #:tween (make-tween e props: '((#:y . 120)) duration: 2000
                                       ease: 'quad-in-out repeat: -1 yoyo?: #t))))
@@ -48,6 +82,21 @@
 
 (define (play-effect name)
   (when (audio-open?) (play-sound name)))
+
+;; The coins the player touches go, each in sparkles; sparkles that have
+;; died out go too. Answers the new scene and how many coins were taken.
+(define (collect-coins scene)
+  (let* ((player (scene-find-tagged scene 'player))
+         (taken (filter-entities (lambda (c) (entity-overlap? player c))
+                                 (scene-find-all-tagged scene 'coin))))
+    (unless (null? taken) (play-effect 'coin))
+    (values (foldl scene-add-entity
+                   (scene-remove-entities
+                    scene (lambda (e) (or (memq e taken)
+                                          (and (eq? (entity-type e) 'sparkles)
+                                               (emitter-done? (entity-ref e #:emitter))))))
+                   (map sparkles taken))
+            (length taken))))
 
 ;; Input becomes velocity; a jump is a one-frame impulse, only from the ground.
 (define (control-player input p frame)
@@ -87,26 +136,38 @@
    create: (lambda (game)
              (condition-case
                  (begin (init-audio!)
-                        (load-sounds! '((jump . "demo/assets/jump.wav"))))
+                        (load-sounds! '((jump . "demo/assets/jump.wav") (coin . "demo/assets/coin.wav"))))
                (e (exn) (print "platformer: no sound (" (get-condition-property e 'exn 'message) ")")))
+             (game-asset-set! game 'coins 0)
+             (game-asset-set! game 'font (and (file-exists? font-file) (open-font font-file 12)))
              (let* ((scene (game-load-scene! game "demo/levels/platformer.tmx"
                                              entities: (list platform lift player)
+                                             objects->entities: '("coins")
                                              camera: camera))
                     (sprites (cadr (tilemap-tilesets (scene-tilemap scene)))))
                ;; entities draw their #:tile-id from the sprite sheet
-               (game-scene-set! game (update-scene scene tileset: sprites
-                                                   tileset-texture: #f))))
+               (game-scene-set! game (scene-map-entities
+                                      (update-scene scene tileset: sprites tileset-texture: #f)
+                                      (lambda (s e) (if (eq? (entity-type e) 'coin) (spinning e) e))))))
    update: (lambda (game dt)
-             (game-scene-set!
-              game
-              (scene-map-entities
-               (game-scene game)
-               (lambda (scene e)
-                 (case (entity-type e)
-                   ((player) (respawn-if-fallen
-                              (control-player (game-input game) e (game-frame game))))
-                   ((platform) (move-platform e))
-                   (else e))))))))
+             (receive (scene taken)
+                 (collect-coins
+                  (scene-map-entities
+                   (game-scene game)
+                   (lambda (scene e)
+                     (case (entity-type e)
+                       ((player) (respawn-if-fallen
+                                  (control-player (game-input game) e (game-frame game))))
+                       ((platform) (move-platform e))
+                       (else e)))))
+               (game-asset-set! game 'coins (+ taken (game-asset game 'coins)))
+               (game-scene-set! game scene)))
+   render: (lambda (game)
+             (let ((font (game-asset game 'font)))
+               (when font
+                 (draw-text! (game-renderer game) font
+                             (sprintf "COINS ~a" (game-asset game 'coins)) 6 4
+                             color: '(255 240 120)))))))
 
 (demo-run! game)
 (shutdown-audio!)
@@ -117,6 +178,12 @@
         (lift (car (filter-entities (lambda (e) (eq? (entity-type e) 'lift))
                                     (scene-entities (game-scene game)))))
         (camera (scene-camera (game-scene game))))
+    (printf "platformer: coins ~a left ~a sparkles ~a~%" (game-asset game 'coins)
+            (length (scene-find-all-tagged (game-scene game) 'coin))
+            (foldl (lambda (n e) (if (eq? (entity-type e) 'sparkles)
+                                     (+ n (emitter-count (entity-ref e #:emitter)))
+                                     n))
+                   0 (scene-entities (game-scene game))))
     (printf "platformer: player at (~a, ~a) on-ground ~a camera (~a, ~a) lift at ~a~%"
             (entity-ref p #:x) (entity-ref p #:y) (entity-ref p #:on-ground? #f)
             (camera-x camera) (camera-y camera) (floor (entity-ref lift #:y)))))

@@ -21,7 +21,18 @@
   (with-output-to-file (demo-tmp "ds-gs-script.scm") (lambda () (write '((0 right) (10)))))
   (test "ten frames of the right arrow move the square 30 px"
         "getting-started: square at 180 110"
-        (last-line (demo-output (string-append "bin/demo-getting-started --headless --frames 30 --script " (demo-tmp "ds-gs-script.scm"))))))
+        (last-line (demo-output (string-append "bin/demo-getting-started --headless --frames 30 --script " (demo-tmp "ds-gs-script.scm")))))
+  (with-output-to-file (demo-tmp "ds-gs-corner.scm") (lambda () (write '((0 right down)))))
+  (test "held against a corner for 100 frames, it stops at the edges of the 320 x 240 view"
+        "getting-started: square at 300 220"
+        (last-line (demo-output (string-append "bin/demo-getting-started --headless --frames 100 --script "
+                                               (demo-tmp "ds-gs-corner.scm") " --screenshot " (demo-tmp "ds-gs-corner.png")))))
+  (test "and is drawn whole in the corner" 400
+        (png-count (demo-tmp "ds-gs-corner.png") (near-colour? '(240 200 60)) 300 220 20 20))
+  (with-output-to-file (demo-tmp "ds-gs-left.scm") (lambda () (write '((0 left up)))))
+  (test "likewise at the top left" "getting-started: square at 0 0"
+        (last-line (demo-output (string-append "bin/demo-getting-started --headless --frames 100 --script "
+                                               (demo-tmp "ds-gs-left.scm"))))))
 
 (test-group "demo: platformer"
   (when (file-exists? (demo-tmp "ds-platformer.png")) (delete-file (demo-tmp "ds-platformer.png")))

@@ -89,7 +89,7 @@
                 (map (lambda (d) (if (absolute-pathname? d) d (normalize-pathname (make-pathname (current-directory) d))))
                      (repository-path))
                 ":"))
-         (program "(import (downstroke entity) (downstroke physics) (downstroke scene) (downstroke tween) (downstroke animation) (downstroke map) (downstroke overlap) (downstroke camera) (downstroke check) (chicken io)) (for-each print (with-input-from-file \"/proc/self/maps\" read-lines))")
+         (program "(import (downstroke entity) (downstroke physics) (downstroke scene) (downstroke tween) (downstroke animation) (downstroke map) (downstroke overlap) (downstroke camera) (downstroke check) (downstroke particles) (chicken io)) (for-each print (with-input-from-file \"/proc/self/maps\" read-lines))")
          (maps (with-input-from-pipe
                 (sprintf "CHICKEN_REPOSITORY_PATH=~a csi -q -e ~a" (qs path) (qs program))
                 read-lines))

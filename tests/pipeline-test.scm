@@ -13,7 +13,7 @@
 
 (import scheme (chicken base) (chicken condition) (chicken format) srfi-4 (downstroke test)
         (downstroke entity) (downstroke tilemap) (downstroke scene) (downstroke physics)
-        (downstroke tween) (downstroke animation) (downstroke pipeline))
+        (downstroke tween) (downstroke animation) (downstroke pipeline) (downstroke particles))
 
 (define pl-seed 4242)
 (define (pl-rand n)
@@ -255,16 +255,29 @@
          (scene ((each resolve-tile-collisions-y) scene))
          (scene ((each detect-on-solid) scene))
          (scene (scene-transform-entities scene resolve-entity-collisions))
-         (scene (scene-transform-entities scene sync-groups)))
-    ((each apply-animation) scene)))
+         (scene (scene-transform-entities scene sync-groups))
+         (scene ((each apply-animation) scene)))
+    ((each step-particles) scene)))
+
+(define pl-particles-seen 0)
+
+;; Sometimes an emitter (particles.scm), born in the entity's box.
+(define (pl-with-emitter e)
+  (if (pl-chance 10)
+      (entity-set e #:emitter (make-emitter rate: (pl-pick 0 1/2 2) burst: (pl-pick 0 5)
+                                            speed: '(0 3) lifetime: '(2 6) gravity: (pl-pick 0 1/4)
+                                            seed: (+ 1 (pl-rand 1000))))
+      e))
 
 (test-group "engine-pipeline (the fast path) equals contract-pipeline and the steps in turn"
   (let loop ((k 0) (different 0) (frames 0))
     (if (= k 300)
         (begin (test "300 random scenes, 10 frames each: identical entities" 0 different)
-               (test "every frame compared" 3000 frames))
+               (test "every frame compared" 3000 frames)
+               (test-assert "emitters among them were stepped (particles were alive)"
+                            (> pl-particles-seen 100)))
         (let* ((n (pl-pick 0 1 2 3 5 8 40))
-               (entities (let make ((i 0)) (if (= i n) '() (cons (pl-with-tween (pl-entity i)) (make (+ i 1))))))
+               (entities (let make ((i 0)) (if (= i n) '() (cons (pl-with-emitter (pl-with-tween (pl-entity i))) (make (+ i 1))))))
                (scene (make-scene tilemap: (if (pl-chance 80) (pl-map) #f)
                                   collision-mode: (pl-pick 'swept 'discrete) entities: entities)))
           (let frame ((f 0) (fast scene) (slow scene) (different different) (frames frames))
@@ -280,6 +293,10 @@
                                   '(contract-pipeline differs from the steps run in turn))))
                   (cond ((and (scene? fast2) (scene? slow2)
                               (equal? (scene-entities fast2) (scene-entities slow2)))
+                         (for-each (lambda (e)
+                                     (let ((em (entity-ref e #:emitter #f)))
+                                       (when em (set! pl-particles-seen (+ pl-particles-seen (emitter-count em))))))
+                                   (scene-entities fast2))
                          (frame (+ f 1) fast2 slow2 different (+ frames 1)))
                         ((and (pair? fast2) (equal? fast2 slow2))
                          ;; both raised the same error: the scene stops here

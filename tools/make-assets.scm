@@ -18,6 +18,7 @@
 ;;;           9 bird wings up  10 wings level  11 wings down
 ;;;   row 2: 12 coin  13 coin turning  14 coin edge-on
 ;;;          15 16 17 torch flame (three flickers)
+;;; shmup.png, 4 tiles of 16 x 16 for the shmup (ship, enemy, bullet, spark).
 ;;; font.png, a sprite font: printable ASCII (32..126) in 6 x 8 cells, 16 to
 ;;; a row; white 5 x 7 glyphs with a dark shadow one pixel down and right.
 ;;; Sounds: jump.wav, coin.wav, boom.wav (effects); music.wav, a 4 s loop.
@@ -201,6 +202,35 @@
   (draw-torch! r 17 -1 6))
 
 ;;; ------------------------------------------------------------------
+;;; shmup.png: the shmup's sheet, 16 x 16 tiles in one row (gid = index + 1):
+;;;   0 the ship (pointing up)  1 an enemy saucer  2 a bullet  3 a spark,
+;;;   white so that particles tint it (a round blob, brighter at its heart)
+
+(define (draw-shmup! r)
+  ;; the ship: a cyan arrow with a cockpit and two orange engine flames
+  (tile-rect! r 0 '(120 220 255) 7 1 2 12)
+  (tile-rect! r 0 '(120 220 255) 5 5 6 8)
+  (tile-rect! r 0 '(120 220 255) 2 9 12 4)
+  (tile-rect! r 0 '(60 140 200) 1 11 2 4)
+  (tile-rect! r 0 '(60 140 200) 13 11 2 4)
+  (tile-rect! r 0 '(30 40 90) 7 6 2 3)
+  (tile-rect! r 0 '(255 170 40) 5 13 2 3)
+  (tile-rect! r 0 '(255 170 40) 9 13 2 3)
+  ;; an enemy: a red saucer with a pale dome and lights
+  (tile-rect! r 1 '(230 80 90) 1 7 14 5)
+  (tile-rect! r 1 '(230 80 90) 3 5 10 8)
+  (tile-rect! r 1 '(255 200 210) 5 2 6 4)
+  (tile-rect! r 1 '(150 40 60) 2 12 12 2)
+  (for-each (lambda (x) (tile-rect! r 1 '(255 240 120) x 9 2 2)) '(3 7 11))
+  ;; a bullet: a pale yellow bolt, 3 px wide, centred
+  (tile-rect! r 2 '(255 255 160) 6 3 4 10)
+  (tile-rect! r 2 '(255 255 255) 7 4 2 8)
+  ;; a spark: white, a plus of 8 px with a 4 x 4 heart
+  (tile-rect! r 3 '(255 255 255 160) 4 6 8 4)
+  (tile-rect! r 3 '(255 255 255 160) 6 4 4 8)
+  (tile-rect! r 3 '(255 255 255) 6 6 4 4))
+
+;;; ------------------------------------------------------------------
 ;;; font.png: 5 x 7 glyphs, each given as 7 rows of 5 bits (bit 4 = left).
 
 (define glyph-rows
@@ -352,7 +382,7 @@
 ;;; ------------------------------------------------------------------
 
 (define asset-names
-  '("tiles.png" "sprites.png" "font.png" "jump.wav" "coin.wav" "boom.wav" "music.wav"))
+  '("tiles.png" "sprites.png" "shmup.png" "font.png" "jump.wav" "coin.wav" "boom.wav" "music.wav"))
 
 ;; Every asset is there and newer than this generator: nothing to do.
 (define (assets-fresh?)
@@ -369,6 +399,7 @@
   (init! '(video))
   (make-png! (string-append out-dir "/tiles.png") (* 8 T) T draw-tiles!)
   (make-png! (string-append out-dir "/sprites.png") (* 6 T) (* 3 T) draw-sprites!)
+  (make-png! (string-append out-dir "/shmup.png") (* 4 T) T draw-shmup!)
   (make-png! (string-append out-dir "/font.png") (* font-columns glyph-w) (* 6 glyph-h) draw-font!)
   (quit!)
   (write-wav! (string-append out-dir "/jump.wav") (square-sweep 300 700 150))

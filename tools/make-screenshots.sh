@@ -24,7 +24,7 @@ shot() {
 
 shot getting-started 40 '((0 right down) (12))'
 shot platformer 150 '((0 right) (40 right a) (41 right) (90))'
-shot shmup 240 '((0 a))'
+shot shmup 200 '((0 a))'
 shot topdown 160 '((0 up) (30 left) (90 down) (110))'
 shot sandbox 300
 shot tweens 90

@@ -1,0 +1,60 @@
+/* (downstroke renderer)'s one walk over an entity: the values of the keys
+   it draws by, instead of one assq per key. Included by renderer.scm.
+
+   ds_entity_keys(alist, keys, out): for each key keys[i] (at most 30)
+   that the alist holds, out[i] is its value (the first pair's, as assq
+   would find), else #f; the answer is a fixnum with bit i set when keys[i]
+   is held with a value other than #f, or -1 when the alist is not a list
+   of pairs (the caller then reads it with entity-ref, which raises the
+   error). Most keys of an entity are none of `keys` and fail the first
+   test: one bit per key from bits 4-9 of its address (keywords are
+   aligned blocks), as in needs.c. Keywords may move in a garbage
+   collection, so that mask is made afresh on each call (nothing here
+   allocates, so none happens during one). */
+#define DS_KEYS_BIT(k) ((C_uword)1 << (((C_uword)(k) >> 4) & 63))
+
+static C_word ds_entity_keys(C_word alist, C_word keys, C_word out) {
+  C_word ps, p, k;
+  int n = C_header_size(keys), i;
+  C_uword mask = 0;
+  C_word bits = 0, seen = 0;
+  for (i = 0; i < n; i++) {
+    mask |= DS_KEYS_BIT(C_block_item(keys, i));
+    C_set_block_item(out, i, C_SCHEME_FALSE);
+  }
+  for (ps = alist; ps != C_SCHEME_END_OF_LIST; ps = C_block_item(ps, 1)) {
+    if (!C_truep(C_i_pairp(ps))) return C_fix(-1);
+    p = C_block_item(ps, 0);
+    if (!C_truep(C_i_pairp(p))) return C_fix(-1);
+    k = C_block_item(p, 0);
+    if (!(mask & DS_KEYS_BIT(k))) continue;
+    for (i = 0; i < n; i++)
+      if (C_block_item(keys, i) == k) {
+        if (!(seen & ((C_word)1 << i))) {
+          seen |= (C_word)1 << i;
+          if (C_block_item(p, 1) != C_SCHEME_FALSE) {
+            bits |= (C_word)1 << i;
+            C_mutate(&C_block_item(out, i), C_block_item(p, 1));
+          }
+        }
+        break;
+      }
+  }
+  return C_fix(bits);
+}
+
+/* Whether any alist of a list holds `key` with a value other than #f
+   (the draw order key: without it no entity list is sorted). A malformed
+   entity is passed over here; drawing it raises the error. */
+static C_word ds_any_has_key(C_word alists, C_word key) {
+  C_word es, ps, p;
+  for (es = alists; C_truep(C_i_pairp(es)); es = C_block_item(es, 1))
+    for (ps = C_block_item(es, 0); C_truep(C_i_pairp(ps)); ps = C_block_item(ps, 1)) {
+      p = C_block_item(ps, 0);
+      if (C_truep(C_i_pairp(p)) && C_block_item(p, 0) == key) {
+        if (C_block_item(p, 1) != C_SCHEME_FALSE) return C_SCHEME_TRUE;
+        break;                  /* the first pair of the key decides */
+      }
+    }
+  return C_SCHEME_FALSE;
+}
