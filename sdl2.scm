@@ -759,12 +759,13 @@ EOF
                         path w h (max-image-pixels))))
 
   (define (check-image-header who path)
-    (let ((why (file-problem path)))   ; SDL_image says "not found" itself
-      (when (and why (not (equal? why "not found")))
-        (error who (sprintf "~s ~a" path why))))
-    (let ((size (and (not (file-problem path)) (image-file-size path))))
-      (when (and size (> (* (car size) (cadr size)) (max-image-pixels)))
-        (too-many-pixels who path (car size) (cadr size)))))
+    (let ((why (file-problem path)))
+      (cond ((equal? why "not found"))          ; SDL_image says so itself
+            (why (error who (sprintf "~s ~a" path why)))
+            ((image-file-size path)
+             => (lambda (size)
+                  (when (> (* (car size) (cadr size)) (max-image-pixels))
+                    (too-many-pixels who path (car size) (cadr size))))))))
 
   ;; A texture from an image file (PNG and whatever else SDL_image reads).
   ;; key: #f, or a colour (r g b) drawn transparent (Tiled's `trans`): the

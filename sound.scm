@@ -187,9 +187,13 @@ EOF
   ;; Before SDL_mixer sees a file: a regular file, not too large, and no
   ;; WAV header that SDL would divide by zero with.
   (define (check-sound-file who path)
-    (cond ((equal? (file-problem path) "not found") #f)   ; SDL says so itself
-          ((file-problem path) => (lambda (why) (error who (sprintf "~s ~a" path why))))
-          ((> (file-size path) (max-sound-file-size))
+    (let ((why (file-problem path)))
+      (cond ((equal? why "not found") #f)           ; SDL says so itself
+            (why (error who (sprintf "~s ~a" path why)))
+            (else (check-sound-contents who path)))))
+
+  (define (check-sound-contents who path)
+    (cond ((> (file-size path) (max-sound-file-size))
            (error who (sprintf "~s is ~a bytes: more than the limit of ~a (max-sound-file-size)"
                                path (file-size path) (max-sound-file-size))))
           ((wav-file-problem path)

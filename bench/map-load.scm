@@ -32,15 +32,8 @@
    data " </layer>\n</map>\n"))
 
 (define (zlib-map)
-  (let ((bytes (make-u8vector (* 4 cells) 0)))
-    (do ((i 0 (+ i 1))) ((= i cells))
-      (let ((c (cell i)))
-        (u8vector-set! bytes (* 4 i) (bitwise-and c 255))
-        (u8vector-set! bytes (+ (* 4 i) 1) (bitwise-and (arithmetic-shift c -8) 255))
-        (u8vector-set! bytes (+ (* 4 i) 2) (bitwise-and (arithmetic-shift c -16) 255))
-        (u8vector-set! bytes (+ (* 4 i) 3) (bitwise-and (arithmetic-shift c -24) 255))))
-    (header (string-append "  <data encoding=\"base64\" compression=\"zlib\">\n   "
-                           (base64-encode (zlib-deflate bytes)) "\n  </data>\n"))))
+  (header (string-append "  <data encoding=\"base64\" compression=\"zlib\">\n   "
+                         (zlib-base64) "\n  </data>\n")))
 
 (define (csv-map)
   (let ((out (open-output-string)))
