@@ -7,25 +7,36 @@
 ;;; first value for json-ref), an array a vector, a string a string (UTF-8;
 ;;; \u escapes are encoded, surrogate pairs joined, a lone surrogate is an
 ;;; error), a number an exact integer when written without a fraction or an
-;;; exponent and a flonum otherwise (one that overflows to infinity is an
-;;; error), true/false #t/#f, null the symbol null.
+;;; exponent and a flonum otherwise, true/false #t/#f, null the symbol null.
+;;;
+;;; Numbers: a flonum is the double nearest the decimal written (correctly
+;;; rounded, however many digits); one too large for a double is an error,
+;;; one too small is 0.0. An integer may have at most
+;;; json-max-integer-digits digits (RFC 8259 lets a reader limit numbers):
+;;; CHICKEN converts a long integer in time quadratic in its digits, and no
+;;; Tiled value needs more than ten.
 ;;;
 ;;; Strict: nothing but JSON is accepted (no comments, no trailing commas,
 ;;; no single quotes, no leading zeros, no raw control characters in
-;;; strings, nothing after the value but whitespace); a UTF-8 byte order
-;;; mark at the start is skipped. Nesting deeper than json-max-depth is an
-;;; error. Time is linear in the input: arrays and objects are built by
-;;; consing and one reverse, never with apply.
+;;; strings, no byte sequence that is not UTF-8 as RFC 3629 defines it
+;;; (overlong forms, surrogates and bytes F5-FF included), nothing after the
+;;; value but whitespace); a UTF-8 byte order mark at the start is skipped.
+;;; Nesting deeper than json-max-depth is an error. Time is linear in the
+;;; input: arrays and objects are built by consing and one reverse, never
+;;; with apply, and a number costs at most a bounded amount beyond reading
+;;; its digits.
 ;;;
 ;;; Errors are conditions of kinds exn and json (property `file`), whose
 ;;; message is "SOURCE: line L, column C: what is wrong" (without "SOURCE: "
 ;;; when the source is #f).
 (module (downstroke json)
   (json-parse-string json-read-file json-object? json-object-members
-   json-ref json-null? json-max-depth json-condition? json-type-name)
+   json-ref json-null? json-max-depth json-max-integer-digits json-condition?
+   json-type-name)
 
   (import scheme (chicken base) (chicken fixnum) (chicken format)
-          (chicken condition) (chicken io) (chicken port) (chicken bitwise))
+          (chicken condition) (chicken io) (chicken port) (chicken bitwise)
+          (chicken flonum))
 
   (define-record-type json-object
     (make-json-object members)
@@ -51,6 +62,28 @@
           (else "a value")))
 
   (define json-max-depth (make-parameter 1000))
+  (define json-max-integer-digits (make-parameter 1000))
+
+  ;; Significant digits kept when a decimal becomes a double. A value
+  ;; halfway between two doubles has at most 767 significant digits, so
+  ;; the digits beyond 800 only matter by being zero or not: one more
+  ;; digit 1 stands for any that are not, and the rounding is unchanged.
+  (define kept-digits 800)
+
+  ;; 10^0 .. 10^22, each exact as a double: a mantissa below 2^53 times or
+  ;; divided by one of them is rounded once, so correctly.
+  (define exact-powers-of-ten
+    (let ((v (make-vector 23)))
+      (do ((k 0 (fx+ k 1)) (p 1.0 (fp* p 10.0))) ((fx= k 23) v)
+        (vector-set! v k p))))
+
+  ;; The continuation bytes allowed after each lead byte of a UTF-8
+  ;; sequence (RFC 3629, section 4): lead from, lead to, second byte from,
+  ;; second byte to, sequence length; every later byte is 80-BF.
+  (define utf8-forms
+    '((#xC2 #xDF #x80 #xBF 2) (#xE0 #xE0 #xA0 #xBF 3) (#xE1 #xEC #x80 #xBF 3)
+      (#xED #xED #x80 #x9F 3) (#xEE #xEF #x80 #xBF 3) (#xF0 #xF0 #x90 #xBF 4)
+      (#xF1 #xF3 #x80 #xBF 4) (#xF4 #xF4 #x80 #x8F 4)))
 
   (define json-condition? (condition-predicate 'json))
 
@@ -107,18 +140,72 @@
                                  (fx+ c 2) (fx+ c 1))))
                       (if (digit? e) (digits e) (fail e "the exponent needs a digit")))
                     c))
-             (v (cond ((and (fx= b d) (fx< (fx- b a) 18))
-                       ;; an integer that fits a fixnum: no substring, no
-                       ;; string->number (most of a map's cells)
+             (v (cond ((and (fx= b d) (fx< (fx- b a) 10))
+                       ;; an integer below 10^9, a fixnum even where fixnums
+                       ;; have 31 bits: no substring, no string->number (most
+                       ;; of a map's cells)
                        (let loop ((k a) (v 0))
                          (if (fx= k b)
                              (if (fx= a i) v (fx- 0 v))
                              (loop (fx+ k 1) (fx+ (fx* v 10) (fx- (char->integer (string-ref s k)) 48))))))
-                      ((fx= b d) (string->number (substring s i d)))
-                      (else (exact->inexact (string->number (substring s i d)))))))
+                      ((fx= b d)
+                       (when (fx> (fx- b a) (json-max-integer-digits))
+                         (fail i "an integer of ~a digits (json-max-integer-digits is ~a)"
+                               (fx- b a) (json-max-integer-digits)))
+                       (string->number (substring s i d)))
+                      (else (decimal->flonum (fx> a i) a b c d)))))
         (unless (and v (or (exact? v) (finite? v)))
-          (fail i "the number ~a is out of range" (substring s i d)))
+          (fail i "the number ~a is out of range"
+                (if (fx> (fx- d i) 40) (string-append (substring s i (fx+ i 40)) "...") (substring s i d))))
         (values v d)))
+    ;; The double nearest the decimal whose integer digits are s[a, b),
+    ;; fraction digits s[b+1, c) (none when c = b) and exponent s[c+1, d)
+    ;; (none when d = c); +inf.0 when it is too large for a double.
+    (define (decimal->flonum negative? a b c d)
+      (let* ((int-count (fx- b a))
+             (frac-count (if (fx> c b) (fx- c (fx+ b 1)) 0))
+             (count (fx+ int-count frac-count))
+             (digit-at (lambda (k)                 ; k-th digit of both parts
+                         (string-ref s (if (fx< k int-count) (fx+ a k) (fx+ (fx+ b 1) (fx- k int-count))))))
+             (first (let skip ((k 0))
+                      (if (and (fx< k count) (char=? (digit-at k) #\0)) (skip (fx+ k 1)) k)))
+             (significant (fx- count first))
+             (kept (fxmin significant kept-digits))
+             (sticky? (let any ((k (fx+ first kept)))
+                        (and (fx< k count) (or (not (char=? (digit-at k) #\0)) (any (fx+ k 1))))))
+             ;; the exponent, or tiny or huge when it is larger than the text
+             ;; is long: then no count of digits brings it near a double
+             (exponent (if (fx= d c) 0
+                           (let* ((sign-at (fx+ c 1))
+                                  (minus? (char=? (string-ref s sign-at) #\-))
+                                  (from (if (memv (string-ref s sign-at) '(#\+ #\-)) (fx+ sign-at 1) sign-at)))
+                             (let loop ((k from) (e 0))
+                               (cond ((fx= k d) (if minus? (fx- 0 e) e))
+                                     ((fx> e (fx+ n 400)) (if minus? 'tiny 'huge))
+                                     (else (loop (fx+ k 1) (fx+ (fx* e 10) (fx- (char->integer (string-ref s k)) 48)))))))))
+             (magnitude
+              (cond ((fx= significant 0) 0.0)
+                    ((eq? exponent 'tiny) 0.0)
+                    ((eq? exponent 'huge) +inf.0)
+                    (else
+                     ;; the value is M * 10^x, M the kept digits (and the sticky 1)
+                     (let ((x (- (+ exponent significant) frac-count kept (if sticky? 1 0)))
+                           (top (- (+ exponent significant) frac-count)))   ; value < 10^top
+                       (cond ((> top 310) +inf.0)
+                             ((< top -330) 0.0)
+                             ((and (fx<= kept 15) (not sticky?) (<= -22 x 22))
+                              (let ((m (let loop ((k first) (m 0.0))
+                                         (if (fx= k (fx+ first kept)) m
+                                             (loop (fx+ k 1) (fp+ (fp* m 10.0) (exact->inexact (fx- (char->integer (digit-at k)) 48))))))))
+                                (if (>= x 0)
+                                    (fp* m (vector-ref exact-powers-of-ten x))
+                                    (fp/ m (vector-ref exact-powers-of-ten (- x))))))
+                             (else
+                              (let ((digits (make-string (if sticky? (fx+ kept 1) kept) #\1)))
+                                (do ((k 0 (fx+ k 1))) ((fx= k kept))
+                                  (string-set! digits k (digit-at (fx+ first k))))
+                                (exact->inexact (* (string->number digits) (expt 10 x)))))))))))
+        (if negative? (fpneg magnitude) magnitude)))
     (define (hex4 i)
       (let loop ((k 0) (v 0))
         (if (fx= k 4)
@@ -144,6 +231,25 @@
              (byte (fxior #x80 (fxand (fxshr code 12) #x3F)))
              (byte (fxior #x80 (fxand (fxshr code 6) #x3F)))
              (byte (fxior #x80 (fxand code #x3F))))))
+    ;; The index just after the UTF-8 sequence whose lead byte is at j (80
+    ;; or above); anything that is not a whole well-formed sequence is an
+    ;; error.
+    (define (utf8-end j)
+      (define (byte k) (if (fx< k n) (char->integer (string-ref s k)) -1))
+      (define (in? x from to) (and (fx>= x from) (fx<= x to)))
+      (let* ((lead (byte j))
+             (form (let find ((fs utf8-forms))
+                     (cond ((null? fs) #f)
+                           ((in? lead (car (car fs)) (cadr (car fs))) (car fs))
+                           (else (find (cdr fs))))))
+             (end (and form (fx+ j (list-ref form 4)))))
+        (let check ((k (fx+ j 1)))
+          (cond ((not form) (fail j "the byte ~x is not UTF-8 (strings must be UTF-8)" lead))
+                ((fx= k end) end)
+                ((in? (byte k) (if (fx= k (fx+ j 1)) (caddr form) #x80)
+                      (if (fx= k (fx+ j 1)) (cadddr form) #xBF))
+                 (check (fx+ k 1)))
+                (else (fail j "the bytes from ~x are not UTF-8 (strings must be UTF-8)" lead))))))
     ;; i is just after the opening quote.
     (define (str i)
       ;; fast path: no escape before the closing quote
@@ -154,6 +260,7 @@
               ((fx< (char->integer (string-ref s j)) 32)
                (fail j "a control character (code ~a) inside a string must be escaped"
                      (char->integer (string-ref s j))))
+              ((fx>= (char->integer (string-ref s j)) 128) (scan (utf8-end j)))
               (else (scan (fx+ j 1))))))
     (define (escaped i)
       (let ((out (open-output-string)))
@@ -194,6 +301,10 @@
                                  (fail j "a lone surrogate \\u~a" (substring s (fx+ j 2) (fx+ j 6))))
                                 (else (put-utf8 u out) (loop (fx+ j 6))))))
                        (else (fail j "unknown escape \\~a" e)))))
+                  ((fx>= (char->integer c) 128)
+                   (let ((end (utf8-end j)))
+                     (do ((k j (fx+ k 1))) ((fx= k end)) (write-char (string-ref s k) out))
+                     (loop end)))
                   (else (write-char c out) (loop (fx+ j 1))))))))
     (define (value i depth)
       (let ((i (skip-ws i)))

@@ -3,6 +3,7 @@
 ;;; refused with its line and column.
 
 (import scheme (chicken base) (chicken string) (chicken format) (chicken condition)
+        (chicken random)
         (only (downstroke util) iota)
         (downstroke test) (downstroke json))
 
@@ -47,6 +48,79 @@
              (vector->list (json-parse-string
                             (string-append "[" (string-intersperse (map number->string l) ",") "]"))))))
    '(1 1023 1024 1025 2047 2048 2049 5000)))
+
+;; The double nearest a decimal, by exact arithmetic: the reference the
+;; reader's conversion is checked against.
+(define (nearest-double text)
+  (exact->inexact (string->number (string-append "#e" text))))
+
+(define (digits-of-length k)
+  (let ((s (make-string k)))
+    (do ((i 0 (+ i 1))) ((= i k) s)
+      (string-set! s i (integer->char (+ 48 (pseudo-random-integer 10)))))))
+
+(test-group "json: numbers are the nearest double, however many digits"
+  ;; each is a case that rounding the digits twice gets wrong
+  (for-each
+   (lambda (text)
+     (test text (nearest-double text) (json-parse-string text)))
+   '("1.00000000000000011102230246251565404236316680908203126" ; just above a halfway point
+     "1.00000000000000011102230246251565404236316680908203125" ; exactly halfway: to even
+     "2.4703282292062328e-324"                                 ; just above half the least double
+     "2.2250738585072011e-308"
+     "9007199254740993.0" "1e23" "8.5e-1" "-123.456e-5"))
+  (test "-0.0 keeps its sign" "-0.0" (number->string (json-parse-string "-0.0")))
+  (test "beyond the least double is 0.0" 0.0 (json-parse-string "1e-400"))
+  (test "an exponent longer than the text is 0.0 below" 0.0 (json-parse-string "7e-99999999999999999999"))
+  (test-assert "and out of range above"
+               (substring-index "out of range" (cadr (js-error "7e99999999999999999999"))))
+  (let ((wrong
+         (let loop ((i 0) (wrong '()))
+           (if (= i 2000)
+               wrong
+               (let* ((int (let ((d (digits-of-length (+ 1 (pseudo-random-integer 25)))))
+                             (if (char=? (string-ref d 0) #\0) "0" d)))
+                      (frac (digits-of-length (+ 1 (pseudo-random-integer (if (zero? (modulo i 8)) 1500 30)))))
+                      (text (sprintf "~a.~ae~a" int frac (- (pseudo-random-integer 620) 350))))
+                 (loop (+ i 1)
+                       (if (eqv? (json-parse-string text) (nearest-double text)) wrong (cons text wrong))))))))
+    (test "2000 random decimals of up to 1500 digits, each the nearest double" '() wrong))
+  (test "two million digits, read in time linear in them" 100000.0
+        (json-parse-string (string-append "1." (make-string 2000000 #\0) "1e5")))
+  (test "integers of 10 to 18 digits are exact (beyond a 31-bit fixnum too)"
+        '(1073741824 -999999999999999999 123456789012345678)
+        (vector->list (json-parse-string "[1073741824, -999999999999999999, 123456789012345678]")))
+  (test-assert "an integer longer than json-max-integer-digits is an error naming it"
+               (let ((r (js-error (make-string 2000000 #\7))))
+                 (and (eq? (car r) 'json) (substring-index "json-max-integer-digits" (cadr r))
+                      (substring-index "2000000 digits" (cadr r)))))
+  (test "a game may raise json-max-integer-digits" (string->number (make-string 1500 #\3))
+        (parameterize ((json-max-integer-digits 2000))
+          (json-parse-string (make-string 1500 #\3)))))
+
+(test-group "json: strings are UTF-8 as RFC 3629 defines it"
+  (test "every length of sequence, and the edges of the ranges"
+        "\x7f\xc2\x80\xdf\xbf\xe0\xa0\x80\xed\x9f\xbf\xee\x80\x80\xf0\x90\x80\x80\xf4\x8f\xbf\xbf"
+        (json-parse-string "\"\x7f\xc2\x80\xdf\xbf\xe0\xa0\x80\xed\x9f\xbf\xee\x80\x80\xf0\x90\x80\x80\xf4\x8f\xbf\xbf\""))
+  (test "after an escape too" "\n\xc3\xa9\xf0\x9f\x98\x80" (json-parse-string "\"\\n\xc3\xa9\xf0\x9f\x98\x80\""))
+  (for-each
+   (lambda (c)
+     (let ((r (js-error (string-append "[\"ok\", \"" (car c) "\"]"))))
+       (test-assert (sprintf "~a is refused: ~a" (cadr c) (cadr r))
+                    (and (eq? (car r) 'json) (substring-index "not UTF-8" (cadr r))
+                         ;; the column of the first bad byte (after "\n" in the last case)
+                         (substring-index (sprintf "line 1, column ~a" (if (null? (cddr c)) 9 (caddr c)))
+                                          (cadr r))))))
+   '(("\xff\xfe" "FF FE")
+     ("\xc0\xaf" "the overlong C0 AF")
+     ("\xe0\x80\xaf" "the overlong E0 80 AF")
+     ("\xed\xa0\x80" "the surrogate ED A0 80")
+     ("\xf4\x90\x80\x80" "F4 90 80 80, beyond U+10FFFF")
+     ("\xf5\x80\x80\x80" "F5, never a lead byte")
+     ("\x80" "a continuation byte alone")
+     ("\xc3" "a sequence cut by the closing quote")
+     ("\xe2\x82 " "a sequence cut by a space")
+     ("\\n\xed\xa0\x80" "a surrogate after an escape" 11))))
 
 (test-group "json: malformed text names the line and column"
   (for-each
