@@ -3,27 +3,25 @@
 #                then install the egg as a user would and run them again
 #   make check   just the suites, on build/ (the quick loop while working)
 #   make demo    install what is missing, build, run the platformer demo
-#   make bench   the benchmark scenes of bench-spec.md (never part of test)
+#   make bench   the benchmark scenes of docs/performance.org (never part of test)
 #   make screenshots  the demos' pictures in docs/images/
 # Each module foo.scm becomes build/downstroke.foo.so plus its import library,
 # exactly the files `chicken-install` would install.
 
 CSC       ?= csc
+# Options for what the .egg does not build: import libraries and the bench.
 CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
-# Order matters only for reading; make follows the dependency lines below.
-MODULES := test util media-header keywords srfi-197 entity check camera tween animation particles xml decode json map tmj tmx tilemap scene broadphase physics overlap pipeline sdl2 mapdraw renderer input sound text assets prefabs objects game level repl save engine
-
-# C libraries a module binds through the FFI (passed to the linker by csc).
-LINK_xml    := -L -lexpat
-LINK_decode := -L -lz -L -lzstd
-# SDL2's flags as Debian's pkg-config gives them (the .egg cannot run pkg-config).
-SDL_CFLAGS  := -C -I/usr/include/SDL2 -C -D_REENTRANT
-LINK_sdl2   := $(SDL_CFLAGS) -L -lSDL2 -L -lSDL2_image
-LINK_input  := $(SDL_CFLAGS) -L -lSDL2
-LINK_sound  := $(SDL_CFLAGS) -L -lSDL2 -L -lSDL2_mixer
-LINK_text   := $(SDL_CFLAGS) -L -lSDL2 -L -lSDL2_ttf
+# The build graph comes from downstroke.egg, its one statement: MODULES,
+# each module's SOURCE_name (its file), FLAGS_name (its csc and link
+# options) and a line "$(BUILD)/downstroke.name.so: its source, its C
+# files, the modules it imports". tools/egg-graph.scm writes it; make remakes it when the .egg
+# changes and reads it again.
+include $(BUILD)/graph.mk
+$(BUILD)/graph.mk: downstroke.egg tools/egg-graph.scm | deps
+	@mkdir -p $(BUILD)
+	csi -q -s tools/egg-graph.scm downstroke.egg > $@.tmp && mv $@.tmp $@
 
 LIBS := $(patsubst %,$(BUILD)/downstroke.%.so,$(MODULES))
 
@@ -53,53 +51,18 @@ $(BUILD):
 
 # -J writes downstroke.foo.import.scm beside the library; it is compiled too,
 # so `import` loads native code rather than interpreting the import list.
-$(BUILD)/downstroke.%.so: %.scm | $(BUILD)
-	cd $(BUILD) && $(CSC) -s $(CSC_FLAGS) -C -I$(CURDIR) $(LINK_$*) -J ../$< -o downstroke.$*.so
+$(BUILD)/downstroke.%.so: | $(BUILD)
+	cd $(BUILD) && $(CSC) -s $(FLAGS_$*) -C -I$(CURDIR) -J ../$(SOURCE_$*) -o downstroke.$*.so
 	cd $(BUILD) && $(CSC) -s $(CSC_FLAGS) downstroke.$*.import.scm -o downstroke.$*.import.so
-
-# What each module imports from this library (compile-time dependencies);
-# tests/layout-test.scm checks these lines against the imports and the .egg.
-$(BUILD)/downstroke.sound.so: $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.media-header.so
-$(BUILD)/downstroke.sdl2.so: $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.media-header.so
-$(BUILD)/downstroke.decode.so: $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
-$(BUILD)/downstroke.particles.so: $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.map.so:       $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.tmj.so:       $(BUILD)/downstroke.json.so $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.media-header.so $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.tmj.so
-$(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.tmx.so $(BUILD)/downstroke.objects.so
-$(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.camera.so $(BUILD)/downstroke.check.so
-$(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.overlap.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.check.so:     $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.particles.so
-$(BUILD)/downstroke.camera.so:    $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so
-$(BUILD)/downstroke.pipeline.so:  $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.particles.so $(BUILD)/downstroke.srfi-197.so
-$(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.media-header.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.assets.so:    $(BUILD)/downstroke.util.so
-$(BUILD)/downstroke.prefabs.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.objects.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.prefabs.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.game.so:      $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.level.so:     $(BUILD)/downstroke.game.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.objects.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.repl.so:      
-$(BUILD)/downstroke.save.so:      
-$(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.game.so $(BUILD)/downstroke.level.so $(BUILD)/downstroke.pipeline.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.repl.so $(BUILD)/downstroke.camera.so $(BUILD)/downstroke.save.so
-$(BUILD)/downstroke.mapdraw.so:   $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.map.so
-$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.particles.so $(BUILD)/downstroke.mapdraw.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.check.so
-
-# C files a module includes (its foreign-declare), found through -I.
-$(BUILD)/downstroke.pipeline.so: needs.c
-$(BUILD)/downstroke.renderer.so: keys.c
-$(BUILD)/downstroke.physics.so: motion.c motion.h
-$(BUILD)/downstroke.broadphase.so: broadphase.c
 
 # Tiled's own example maps, from Debian's tiled package (cached in tests/data).
 examples:
 	@sh tools/fetch-tiled-examples.sh
 
+# SUITES="escape physics/" runs only those suites (names, or folders ending
+# in /); each suite runs alone in its own process (tests/run.scm).
 check: libs examples assets
-	cd tests && $(HEADLESS) DOWNSTROKE_MAKE=1 csi -q -s run.scm
+	cd tests && $(HEADLESS) DOWNSTROKE_MAKE=1 $(if $(SUITES),DOWNSTROKE_SUITES="$(SUITES)") csi -q -s run.scm
 
 # After check, not beside it (-j2): a clean copy installed into a private
 # repository by an ordinary user, chicken-install -test, a static game build.
@@ -122,7 +85,7 @@ screenshots: libs assets
 demo: libs assets
 	bin/demo-platformer
 
-# The scenes of bench-spec.md, compiled like a game would be.
+# The scenes of docs/performance.org, compiled like a game would be.
 # RUNS=3 runs per scene instance (medians); BENCH_ARGS="S1 --quick" narrows.
 RUNS ?= 3
 $(BUILD)/bench-scenes: bench/scenes.scm $(LIBS)

@@ -1,6 +1,6 @@
-;;; The benchmark scenes of bench-spec.md (S1, S2, S3) and of
-;;; docs/performance.org (S4, S5, S6), run by `make bench`.
-;;; Prints a table, the checksum lines the spec asks for, and writes one CSV
+;;; The benchmark scenes of docs/performance.org (S1 to S6, written down
+;;; under "The scenes" there), run by `make bench`.
+;;; Prints a table, the checksum lines of each scene, and writes one CSV
 ;;; row per (scene, mode, n or speed):
 ;;;   scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct
 ;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 S4 S5 S6 steps ...]
@@ -11,7 +11,7 @@
         (downstroke entity) (downstroke scene) (downstroke tilemap)
         (downstroke physics) (downstroke overlap) (downstroke engine) (downstroke pipeline) (downstroke tween) (downstroke animation))
 
-;;; The generator of the spec: s := (1103515245 s + 12345) mod 2^31.
+;;; The scenes' generator: s := (1103515245 s + 12345) mod 2^31.
 (define seed 0)
 (define (reseed!) (set! seed 20261121))
 (define (rand)
@@ -368,7 +368,7 @@
       (report! "S5" 'swept n #f 60 ms (/ (* 1000 ms) n) #f #f))))
 
 ;;; S6: n solid 16 px bodies piled on one spot, no map (docs/performance.org):
-;;; every pair overlaps, so the contract's push-apart visits all n(n-1)/2
+;;; every pair overlaps, so the push-apart of docs/physics.org visits all n(n-1)/2
 ;;; of them, and exact positions pushed apart by halves gain a binary
 ;;; digit with every push. The first 3 frames, integer positions (exact)
 ;;; against flonum positions (40.0): what exactness costs in a pile.

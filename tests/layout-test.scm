@@ -1,87 +1,92 @@
-;;; The library's layout: the pure core loads no C library, and the two
-;;; statements of the build graph (downstroke.egg for chicken-install, the
-;;; Makefile for make) agree with each other and with the modules' own
-;;; imports, so neither can go stale.
+;;; The library's layout: the folders are its layers and imports point only
+;;; down; downstroke.egg, the one statement of the build graph (the Makefile
+;;; reads it through tools/egg-graph.scm), agrees with the modules' own
+;;; imports; the pure core loads no C library.
 
 (import scheme (chicken base) (chicken io) (chicken string) (chicken file)
         (chicken pathname) (chicken process) (chicken sort) (chicken format)
         (downstroke test))
 
-(define (filter-map* f ls)
-  (if (null? ls) '() (let ((v (f (car ls)))) (if v (cons v (filter-map* f (cdr ls))) (filter-map* f (cdr ls))))))
 (define (filter-words ok? ls)
   (cond ((null? ls) '()) ((ok? (car ls)) (cons (car ls) (filter-words ok? (cdr ls)))) (else (filter-words ok? (cdr ls)))))
 (define (find* ok? ls) (cond ((null? ls) #f) ((ok? (car ls)) (car ls)) (else (find* ok? (cdr ls)))))
-(define (ly-make-deps name)
-  (let ((l (find* (lambda (l) (string-prefix? (sprintf "$(BUILD)/downstroke.~a.so:" name) l)) ly-make-lines)))
-    (if l
-        (sort (map (lambda (w) (substring w 20 (- (string-length w) 3)))
-                   (filter-words (lambda (w) (string-prefix? "$(BUILD)/downstroke." w)) (cdr (string-split l))))
-              string<?)
-        '())))
 (define (delete* x ls) (cond ((null? ls) '()) ((equal? x (car ls)) (delete* x (cdr ls))) (else (cons (car ls) (delete* x (cdr ls))))))
+(define (dedupe ls)
+  (cond ((null? ls) '()) ((member (car ls) (cdr ls)) (dedupe (cdr ls))) (else (cons (car ls) (dedupe (cdr ls))))))
+
+;; The layers, lowest first, each a folder; two folders of one rank sit side
+;; by side and may not import each other.
+(define layer-ranks '(("base" . 0) ("core" . 1) ("physics" . 2) ("tiled" . 2) ("shell" . 3)))
 
 ;; A file's text without its ; comments (no module name sits in a string).
-(define (ly-code file)
+(define (code-of file)
   (string-intersperse
    (map (lambda (line) (let ((i (substring-index ";" line))) (if i (substring line 0 i) line)))
         (with-input-from-file file read-lines))
    "\n"))
 
-;; The (downstroke NAME) modules a source file imports, as sorted strings.
-(define (ly-imports file)
-  (let loop ((text (ly-code file)) (out '()))
+;; The (downstroke NAME) modules a source file names, as sorted strings.
+(define (imports-of file)
+  (let loop ((text (code-of file)) (out '()))
     (let ((i (substring-index "(downstroke " text)))
       (if (not i)
-          (sort (ly-dedupe out) string<?)
+          (sort (dedupe out) string<?)
           (let* ((rest (substring text (+ i 12)))
                  (end (let scan ((j 0))
                         (if (memv (string-ref rest j) '(#\) #\space #\newline)) j (scan (+ j 1)))))
                  (name (substring rest 0 end)))
             (loop rest (cons name out)))))))
 
-(define (ly-dedupe ls)
-  (cond ((null? ls) '())
-        ((member (car ls) (cdr ls)) (ly-dedupe (cdr ls)))
-        (else (cons (car ls) (ly-dedupe (cdr ls))))))
+(define (strip-prefix s) (if (substring-index "downstroke." s) (substring s 11) s))
 
-(define (ly-strip-prefix s) (if (string-prefix? "downstroke." s) (substring s 11) s))
-(define (string-prefix? p s) (and (>= (string-length s) (string-length p))
-                                  (string=? p (substring s 0 (string-length p)))))
-(define (string-suffix? p s) (and (>= (string-length s) (string-length p))
-                                  (string=? p (substring s (- (string-length s) (string-length p))))))
-
-;; The .egg's library modules (the -libraries linker-script companions
-;; aside), each with its sorted component-dependencies.
-(define ly-egg
+;; The .egg's modules (the static builds' linker scripts aside): each as
+;; (name source-file sorted-dependencies).
+(define egg-modules
   (let ((egg (with-input-from-file "../downstroke.egg" read)))
-    (filter-map*
-     (lambda (c)
-       (let ((name (ly-strip-prefix (symbol->string (cadr c)))))
-         (and (eq? (car c) 'extension) (not (string-suffix? "-libraries" name))
-              (cons name (sort (map (lambda (d) (ly-strip-prefix (symbol->string d)))
-                                    (cond ((assq 'component-dependencies (cddr c)) => cdr)
-                                          (else '())))
-                               string<?)))))
-     (cdr (assq 'components egg)))))
+    (foldr (lambda (c out)
+             (if (and (eq? (car c) 'extension) (not (assq 'linkage (cddr c))))
+                 (cons (list (strip-prefix (symbol->string (cadr c)))
+                             (string-append "../" (cadr (assq 'source (cddr c))))
+                             (sort (map (lambda (d) (strip-prefix (symbol->string d)))
+                                        (cond ((assq 'component-dependencies (cddr c)) => cdr) (else '())))
+                                   string<?))
+                       out)
+                 out))
+           '()
+           (cdr (assq 'components egg)))))
 
+(define (module-file name) (cadr (assoc name egg-modules)))
+(define (layer-of file) (cadr (string-split file "/")))    ; "../core/map.scm" -> "core"
 
-;; The Makefile's MODULES and its "$(BUILD)/downstroke.X.so: deps" lines.
-(define ly-make-lines (with-input-from-file "../Makefile" read-lines))
-(define ly-make-modules
-  (let ((l (find* (lambda (l) (string-prefix? "MODULES :=" l)) ly-make-lines)))
-    (sort (cddr (string-split l)) string<?)))
-
-(test-group "layout: one build graph"
-  (test "the Makefile builds the .egg's modules" (sort (map car ly-egg) string<?) ly-make-modules)
+(test-group "layout: the .egg states the build graph"
+  (test "every module file of a layer folder is in the .egg"
+        (sort (apply append (map (lambda (l) (glob (sprintf "../~a/*.scm" (car l)))) layer-ranks)) string<?)
+        (sort (map cadr egg-modules) string<?))
   (for-each
    (lambda (m)
-     (let ((imports (delete* (car m) (ly-imports (string-append "../" (car m) ".scm")))))
-       (test (sprintf "~a: the .egg's dependencies are its imports" (car m)) imports (cdr m))
-       (test (sprintf "~a: the Makefile's dependencies are its imports" (car m)) imports
-             (ly-make-deps (car m)))))
-   ly-egg))
+     (test (sprintf "~a: the .egg's dependencies are its imports" (car m))
+           (delete* (car m) (imports-of (cadr m)))
+           (caddr m)))
+   egg-modules))
 
+(define (rank-of layer) (cdr (assoc layer layer-ranks)))
+
+;; The modules of deps that a module of layer may not import: those of
+;; another folder whose rank is not lower.
+(define (upward-imports layer deps)
+  (filter-words (lambda (d)
+                  (let ((other (layer-of (module-file d))))
+                    (not (or (string=? other layer) (< (rank-of other) (rank-of layer))))))
+                deps))
+
+(test-group "layout: imports point down the layers"
+  (for-each
+   (lambda (m)
+     (test (sprintf "~a (~a/) imports only from its folder and lower layers" (car m) (layer-of (cadr m)))
+           '() (upward-imports (layer-of (cadr m)) (caddr m))))
+   egg-modules)
+  (test "the rule sees an import upward and one sideways" '("engine" "tmx")
+        (upward-imports "physics" '("entity" "broadphase" "engine" "tmx"))))
 
 ;; A child csi imports the pure modules and reads its own memory map.
 (test-group "layout: the pure core loads no C library"
@@ -103,8 +108,10 @@
 (test-group "layout: one SDL event pump"
   (let ((readers (filter-words
                   (lambda (file) (substring-index "SDL_PollEvent" (with-input-from-file file read-string)))
-                  (append (glob "../*.scm") (glob "../*.c") (glob "../*.h")))))
-    (test "only sdl2.scm calls SDL_PollEvent" '("../sdl2.scm") readers)))
+                  (apply append (map (lambda (l) (append (glob (sprintf "../~a/*.scm" (car l))) (glob (sprintf "../~a/*.c" (car l)))
+                                                     (glob (sprintf "../~a/*.h" (car l)))))
+                                    layer-ranks)))))
+    (test "only sdl2.scm calls SDL_PollEvent" '("../shell/sdl2.scm") readers)))
 
 ;; docs/modules.org is what tools/make-modules-doc.scm writes from the
 ;; modules' own export lists.
@@ -137,7 +144,7 @@
      (lambda (c)
        (for-each
         (lambda (m)
-          (let ((names (md-sibling-only (sprintf "../~a.scm" m))))   ; the doc tool's reading
+          (let ((names (md-sibling-only (module-file (symbol->string m)))))   ; the doc tool's reading
             (test-assert (sprintf "~a.scm marks some names for its siblings" m) (pair? names))
             (for-each (lambda (n)
                         (test (sprintf "(downstroke ~a) does not offer ~a's ~a" (car c) m n) #f

@@ -78,7 +78,7 @@
               (loop (cdr ns) next out))))))
 
 (define (md-text root)
-  (let* ((files (sort (glob (make-pathname root "*.scm")) string<?))
+  (let* ((files (map (lambda (source) (make-pathname root source)) (md-egg-sources root)))
          (modules (let loop ((fs files) (out '()))
                     (if (null? fs) (reverse out)
                         (let ((form (md-module-form (car fs))))
@@ -87,11 +87,12 @@
      (append
       (list "#+TITLE: Modules and their exports"
             ""
-            "Every module of the library, in file order, with what it is for and every"
-            "name it exports, in the order of its export list. Games import the"
-            "modules the other documents name. A few names are exported only because"
-            "a sibling module needs them (CHICKEN has no narrower export): the source"
-            "puts them last in its export list, after the comment"
+            "Every module of the library, in the order of downstroke.egg (its layers,"
+            "lowest first: base, core, physics, tiled, shell), with its file, what it"
+            "is for and every name it exports, in the order of its export list. Games"
+            "import the modules the other documents name. A few names are exported"
+            "only because a sibling module needs them (CHICKEN has no narrower"
+            "export): the source puts them last in its export list, after the comment"
             "=;; for sibling modules only=, they are listed apart below, and the"
             "modules games import for them ((downstroke engine), (downstroke"
             "tilemap)) do not pass them on. This file is written by"
@@ -99,7 +100,7 @@
             "")
       (append-map*
        (lambda (entry)
-         (let* ((file (pathname-strip-directory (car entry)))
+         (let* ((file (md-relative root (car entry)))
                 (form (cdr entry))
                 (siblings (md-sibling-only (car entry)))
                 (exports (md-without (caddr form) siblings))
@@ -117,6 +118,22 @@
             (list ""))))
        modules))
      "\n")))
+
+;; The source files of the .egg's modules, in its order (the static builds'
+;; linker scripts aside).
+(define (md-egg-sources root)
+  (let ((egg (with-input-from-file (make-pathname root "downstroke.egg") read)))
+    (let loop ((cs (cdr (assq 'components egg))) (out '()))
+      (cond ((null? cs) (reverse out))
+            ((assq 'linkage (cddar cs)) (loop (cdr cs) out))
+            (else (loop (cdr cs) (cons (cadr (assq 'source (cddar cs))) out)))))))
+
+(define (md-relative root file)
+  (let ((prefix (string-append root "/")))
+    (if (and (> (string-length file) (string-length prefix))
+             (string=? prefix (substring file 0 (string-length prefix))))
+        (substring file (string-length prefix))
+        file)))
 
 (define (md-without names drop)
   (let loop ((ns names) (out '()))

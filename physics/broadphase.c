@@ -2,6 +2,7 @@
    spans, and the gathering and unfiling of boxes in the hash's buckets.
    Included by broadphase.scm, one compilation unit with it; the Scheme
    comments there say what each is for and why it is C. */
+#include "physics/arith.h"
 
 /* floor(v), or 0 with *ok cleared when v is not a fixnum or a rational
    of fixnums */
@@ -11,7 +12,7 @@ static C_word ds_floor(C_word v, int *ok) {
     C_word n = C_block_item(v, 0), d = C_block_item(v, 1);
     if ((n & C_FIXNUM_BIT) && (d & C_FIXNUM_BIT)) {
       C_word a = C_unfix(n), b = C_unfix(d);     /* b > 1 */
-      return a >= 0 ? a / b : (a + 1) / b - 1;
+      return ds_floor_div(a, b);
     }
   }
   *ok = 0;
@@ -21,7 +22,7 @@ static C_word ds_floor(C_word v, int *ok) {
    integer w, and floor(floor(u) / size) is floor(u / size) */
 static C_word ds_cell(C_word v, C_word w, C_word size, int *ok) {
   C_word f = ds_floor(v, ok) + w;
-  C_word c = f >= 0 ? f / size : (f + 1) / size - 1;
+  C_word c = ds_floor_div(f, size);
   if (!C_fitsinfixnump(c)) *ok = 0;
   return c;
 }

@@ -1,5 +1,5 @@
-;;; Riders are carried by what their platform did this frame (DESIGN.md,
-;;; "Readings", carrying): its velocity, its tween, or nothing.
+;;; Riders are carried by what their platform did this frame
+;;; (docs/physics.org, "Solid entities"): its velocity, its tween, or nothing.
 
 (import scheme (chicken base) (downstroke test) (downstroke entity)
         (downstroke scene) (downstroke tween) (downstroke pipeline))
@@ -43,7 +43,7 @@
                                              (entity-ref (rd-find s 'rider) #:x)
                                              (entity-ref (rd-find s 'rider) #:y)
                                              (entity-ref (rd-find s 'rider) #:on-ground?)))))
-  ;; the contract's 2.2.2 platform: a tween moves it, the velocity steps are skipped
+  ;; a tweened platform: a tween moves it, the velocity steps are skipped
   (let* ((platform (rd-ent #:type 'platform #:x 0 #:y 40 #:width 40 #:height 8
                            #:solid? #t #:immovable? #t
                            #:skip-pipelines '(acceleration gravity velocity-x velocity-y)))

@@ -7,11 +7,8 @@
    is held with a value other than #f, or -1 when the alist is not a list
    of pairs (the caller then reads it with entity-ref, which raises the
    error). Most keys of an entity are none of `keys` and fail the first
-   test: one bit per key from bits 4-9 of its address (keywords are
-   aligned blocks), as in needs.c. Keywords may move in a garbage
-   collection, so that mask is made afresh on each call (nothing here
-   allocates, so none happens during one). */
-#define DS_KEYS_BIT(k) ((C_uword)1 << (((C_uword)(k) >> 4) & 63))
+   test, DS_KEY_BIT's mask (core/entity.h). */
+#include "core/entity.h"
 
 static C_word ds_entity_keys(C_word alist, C_word keys, C_word out) {
   C_word ps, p, k;
@@ -19,7 +16,7 @@ static C_word ds_entity_keys(C_word alist, C_word keys, C_word out) {
   C_uword mask = 0;
   C_word bits = 0, seen = 0;
   for (i = 0; i < n; i++) {
-    mask |= DS_KEYS_BIT(C_block_item(keys, i));
+    mask |= DS_KEY_BIT(C_block_item(keys, i));
     C_set_block_item(out, i, C_SCHEME_FALSE);
   }
   for (ps = alist; ps != C_SCHEME_END_OF_LIST; ps = C_block_item(ps, 1)) {
@@ -27,7 +24,7 @@ static C_word ds_entity_keys(C_word alist, C_word keys, C_word out) {
     p = C_block_item(ps, 0);
     if (!C_truep(C_i_pairp(p))) return C_fix(-1);
     k = C_block_item(p, 0);
-    if (!(mask & DS_KEYS_BIT(k))) continue;
+    if (!(mask & DS_KEY_BIT(k))) continue;
     for (i = 0; i < n; i++)
       if (C_block_item(keys, i) == k) {
         if (!(seen & ((C_word)1 << i))) {

@@ -3,7 +3,7 @@
 
 (import scheme (chicken base) (chicken file) (chicken string) (chicken gc)
         srfi-4 (downstroke test) (downstroke sdl2))
-(include-relative "pixels.scm")
+(include-relative "../../tests/pixels.scm")
 
 ;; The pixel at (x, y) of a read-back frame, as (r g b a).
 (define (sdl-pixel frame x y)

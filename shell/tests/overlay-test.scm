@@ -4,7 +4,7 @@
 (import scheme (chicken base) (chicken file) (chicken format) (chicken string)
         srfi-4 (downstroke test) (downstroke sdl2) (downstroke entity)
         (downstroke scene) (downstroke tilemap) (downstroke renderer))
-(include-relative "pixels.scm")
+(include-relative "../../tests/pixels.scm")
 
 (init!)
 

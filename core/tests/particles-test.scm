@@ -6,7 +6,7 @@
         (downstroke tilemap)
         (downstroke test) (downstroke entity) (downstroke scene) (downstroke particles)
         (downstroke pipeline) (downstroke sdl2) (downstroke renderer))
-(include-relative "pixels.scm")
+(include-relative "../../tests/pixels.scm")
 
 (define (every? ok? l) (or (null? l) (and (ok? (car l)) (every? ok? (cdr l)))))
 (define (square x) (* x x))
@@ -115,7 +115,7 @@
     (define (fx-state s) (map pt-state (emitter-particles (entity-ref (car (scene-entities s)) #:emitter))))
     (test "engine-pipeline steps an entity's #:emitter once a frame" '((5. 4. 1. 0. 1 10))
           (fx-state (engine-pipeline (engine-pipeline scene 16) 16)))
-    (test "as the contract's pipeline does"
+    (test "as contract-pipeline does"
           (fx-state (contract-pipeline (contract-pipeline scene 16) 16))
           (fx-state (engine-pipeline (engine-pipeline scene 16) 16)))
     (test "#:skip-pipelines (particles) holds it still" 0

@@ -152,20 +152,29 @@
   ;; of an assq each: the first five are those of plain entities, the
   ;; rest the sprite keys. An entity holding none of the sprite keys is
   ;; drawn by the code of before them; the others by draw-sprite!. The
-  ;; bit of each key in the walk's answer is its index here.
-  (foreign-declare "#include \"keys.c\"")
-  (define entity-keys
-    (vector #:tile-id #:color #:x #:y #:facing
-            #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y #:flip-x? #:flip-y?
-            #:angle #:scale #:scale-x #:scale-y #:alpha #:tint #:tileset #:emitter))
+  ;; bit of each key in the walk's answer is 2 to the power of its index,
+  ;; which define-drawn-keys writes down from the one list below.
+  (define-syntax define-drawn-keys
+    (er-macro-transformer
+     (lambda (x r c)
+       (let ((keys-name (cadr x)) (entries (cddr x)))     ; (bit-name #:key) ...
+         `(,(r 'begin)
+           (,(r 'define) ,keys-name (,(r 'vector) ,@(map cadr entries)))
+           ,@(let loop ((es entries) (bit 1) (out '()))
+               (if (null? es)
+                   (reverse out)
+                   (loop (cdr es) (* 2 bit) (cons `(,(r 'define-constant) ,(caar es) ,bit) out)))))))))
+  (foreign-declare "#include \"shell/keys.c\"")
+  (define-drawn-keys entity-keys
+    (bit-tile-id #:tile-id) (bit-color #:color) (bit-x #:x) (bit-y #:y) (bit-facing #:facing)
+    (bit-offset-x #:sprite-offset-x) (bit-offset-y #:sprite-offset-y)
+    (bit-origin-x #:origin-x) (bit-origin-y #:origin-y) (bit-flip-x #:flip-x?) (bit-flip-y #:flip-y?)
+    (bit-angle #:angle) (bit-scale #:scale) (bit-scale-x #:scale-x) (bit-scale-y #:scale-y)
+    (bit-alpha #:alpha) (bit-tint #:tint) (bit-tileset #:tileset) (bit-emitter #:emitter))
+  (define plain-keys bit-offset-x)      ; the bits below the first sprite key's
   (define key-values (make-vector (vector-length entity-keys) #f))
   (define read-keys! (foreign-lambda scheme-object "ds_entity_keys" scheme-object scheme-object scheme-object))
   (define any-has-key? (foreign-lambda scheme-object "ds_any_has_key" scheme-object scheme-object))
-  (define plain-keys 32)                ; bits below this: the first five keys
-  (define bit-offset-x 32) (define bit-offset-y 64) (define bit-origin-x 128) (define bit-origin-y 256)
-  (define bit-flip-x 512) (define bit-flip-y 1024) (define bit-angle 2048) (define bit-scale 4096)
-  (define bit-scale-x 8192) (define bit-scale-y 16384) (define bit-alpha 32768) (define bit-tint 65536)
-  (define bit-tileset 131072) (define bit-emitter 262144)
 
   ;; A key's number, checked: the error names the entity and the key.
   (define (sprite-number e key default)

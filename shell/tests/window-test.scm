@@ -12,7 +12,7 @@
         (chicken process) (chicken platform) (chicken io) (chicken pathname)
         (chicken process-context)
         srfi-4 (only (downstroke util) take) (downstroke test) (downstroke sdl2))
-(include-relative "pixels.scm")
+(include-relative "../../tests/pixels.scm")
 
 (define win-dir (create-temporary-directory))
 (define (win-path name) (string-append win-dir "/" name))

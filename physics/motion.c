@@ -1,9 +1,10 @@
 /* (downstroke physics)'s C: the type test for entity numbers and the
-   fixnum motion kernel, steps 2-7 of the contract (and tile ground
+   fixnum motion kernel, steps 2-7 of docs/physics.org's pipeline (and tile ground
    detection) for entities of small fixnums. Included by physics.scm, one
    compilation unit with it; the Scheme comments there say why it is C. */
 
 #include "motion.h"
+#include "physics/arith.h"
 
 static C_word ds_plain_number(C_word v) {
   if (v & C_FIXNUM_BIT) return C_fix(1);
@@ -16,7 +17,6 @@ static C_word ds_plain_number(C_word v) {
 }
 
 
-static long ds_floor_div(long a, long d) { return a >= 0 ? a / d : (a + 1) / d - 1; }
 static long ds_min(long a, long b) { return a < b ? a : b; }
 static long ds_max(long a, long b) { return a > b ? a : b; }
 

@@ -1,7 +1,7 @@
 ;;; A body that starts a frame inside solid tiles (an entity push can leave
 ;;; it there): swept mode takes it out by the shortest way, so no push
-;;; ever carries a body through a wall; discrete mode keeps the contract's
-;;; literal x pass (DESIGN.md, "Readings"; docs/physics.org).
+;;; ever carries a body through a wall; discrete mode keeps the plain x
+;;; pass (docs/physics.org, "A body that starts a frame inside solid tiles").
 
 (import scheme (chicken base) (chicken format) (chicken process-context) (downstroke test) (downstroke entity)
         (downstroke tilemap) (downstroke scene) (downstroke pipeline) (downstroke util)
@@ -47,7 +47,7 @@
           (es-frame tm 'swept body xyv))
     (test "swept: the readable steps say the same" '(41 34 1 0)
           (es-frame tm 'swept body xyv contract-pipeline))
-    (test "discrete: the contract's x pass throws it 21 px back" '(20 34 0 0)
+    (test "discrete: the plain x pass throws it 21 px back" '(20 34 0 0)
           (es-frame tm 'discrete body xyv))))
 
 (test-group "escape: the shortest way, on both axes at once"

@@ -1,5 +1,5 @@
-;;; The fast paths of the default pipeline give exactly what the contract's
-;;; steps give when run one by one:
+;;; The fast paths of the default pipeline give exactly what the steps of
+;;; docs/physics.org ("The pipeline") give when run one by one:
 ;;;   - step-motion (one walk, one copy) against acceleration, gravity,
 ;;;     velocity x, tile x, velocity y, tile y in turn;
 ;;;   - engine-pipeline, the fast path, which skips the steps no entity
@@ -242,7 +242,7 @@
                     landed)
                 (or first-difference (and (not (equal? fast slow)) (list e fast slow))))))))
 
-;; Every step over every entity, as the contract lists them.
+;; Every step over every entity, as docs/physics.org lists them.
 (define (pl-reference-pipeline scene dt)
   (let* ((each (lambda (step) (lambda (s) (scene-map-entities s (lambda (s e) (step s e dt))))))
          (scene ((each record-frame-start) scene))

@@ -1,4 +1,4 @@
-;;; (downstroke physics): every step of the physics contract.
+;;; (downstroke physics): every step of the pipeline docs/physics.org lists.
 ;;;
 ;;; Units: positions in pixels, velocities in pixels per frame, gravity in
 ;;; pixels per frame squared. Per-entity steps have the signature
@@ -20,7 +20,7 @@
 
   (import scheme (chicken base) (chicken fixnum) (chicken sort) (chicken format) (chicken foreign) srfi-4
           (downstroke keywords) (downstroke entity) (downstroke scene) (downstroke map)
-          (downstroke broadphase))
+          (downstroke broadphase) (downstroke arith) (downstroke c-constants))
 
   ;;; Constants
 
@@ -62,7 +62,7 @@
   ;; 0. Calling check-entity-number for every rational of a pushed-apart
   ;; crowd cost a tenth of that scene's time, and an `or` of predicates
   ;; compiles to a closure for its join.
-  (foreign-declare "#include \"motion.c\"")
+  (foreign-declare "#include \"physics/motion.c\"")
   (define plain-number-bit (foreign-lambda scheme-object "ds_plain_number" scheme-object))
   (define-inline (plain-number? v) (eq? (plain-number-bit v) 1))
 
@@ -116,13 +116,6 @@
 
   ;;; Cells covered by a body
 
-  ;; floor(a / d) for an integer a and a positive integer d.
-  (define (floor-div a d)
-    (if (and (fixnum? a) (fixnum? d))
-        (if (fx>= a 0) (fx/ a d) (fx- (fx/ (fx+ a 1) d) 1))
-        (let ((q (quotient a d)))
-          (if (and (negative? a) (not (zero? (remainder a d)))) (- q 1) q))))
-
   (define (->integer v) (if (exact? v) v (inexact->exact v)))
 
   ;; The cell index holding coordinate `pos` (tiles of `tile` px).
@@ -133,7 +126,7 @@
 
   ;; The first and last cell a span [pos, pos+size) covers on one axis:
   ;; floor(pos/T) to ceil((pos+size)/T) - 1, which for integers is the
-  ;; contract's floor((pos+size-1)/T): a body flush with a tile edge does not
+  ;; floor((pos+size-1)/T) of docs/physics.org: a body flush with a tile edge does not
   ;; cover that tile. A zero-size span on a tile edge covers no cell (last <
   ;; first); elsewhere it covers the one cell it lies in.
   (define (entity-cell-span pos size tile)
@@ -253,7 +246,7 @@
   ;;; Per-entity steps, in pipeline order
 
   ;; Each motion step is its rule (a procedure of the scene and the entity)
-  ;; behind its guard and skip symbol. The rules are the contract's motion,
+  ;; behind its guard and skip symbol. The rules are docs/physics.org's motion,
   ;; written once: the steps run them, and so does the motion pass for
   ;; every entity its C kernel does not take (motion-steps, below).
 
@@ -292,7 +285,7 @@
 
   ;; Which tile step an entity gets: its own #:collision-mode, else the
   ;; scene's.
-  ;;   discrete  the contract's step: the cells the body covers after moving.
+  ;;   discrete  the plain step: the cells the body covers after moving.
   ;;   swept     also the cells it crossed on the way: the scan starts where
   ;;             the body was before this frame's move (pos - v), so no wall
   ;;             is passed at any speed. Wherever the discrete step does not
@@ -379,12 +372,12 @@
   ;; Swept mode, before a body's first tile pass of the frame: a body that
   ;; starts the frame inside solid tiles (an entity push can leave it
   ;; there) and moves is first taken out of them by the shortest way, so
-  ;; that no push ever carries a body through a wall (shared/DESIGN.md,
-  ;; "Readings"). A body at rest (both velocities 0) is left where it is,
+  ;; that no push ever carries a body through a wall (docs/physics.org, "A
+  ;; body that starts a frame inside solid tiles"). A body at rest (both velocities 0) is left where it is,
   ;; as the tile passes leave it. Where a body's frame started is
   ;; pos - v only for a body its velocity moves: one with a #:tween, or one
   ;; that skips both velocity steps (a tween or the game places it), is
-  ;; left to the tile passes, as the contract resolves it. (sx, sy) is
+  ;; left to the tile passes, as discrete mode resolves it. (sx, sy) is
   ;; where the frame's motion started; the entity is moved by the same
   ;; amount.
   (define (leave-solids entity tm sx sy)
@@ -495,14 +488,14 @@
 
 ;;; Steps 2-7 in one pass
 
-  ;; Steps 2-7 of the contract (acceleration, gravity, velocity x, tile
+  ;; Steps 2-7 of docs/physics.org's pipeline (acceleration, gravity, velocity x, tile
   ;; collisions x, velocity y, tile collisions y) for one entity, giving
   ;; exactly what running those six steps one after the other gives: the
   ;; motion pass of a one-entity frame (below).
   (define (step-motion scene e dt)
     ((motion-pass scene dt) e))
 
-  ;; The six steps one after the other, as the contract runs them. An
+  ;; The six steps one after the other, as the pipeline runs them. An
   ;; entity without #:skip-pipelines has each guard read once and each rule
   ;; called directly; any other runs the steps themselves.
   (define (motion-steps scene e dt)
@@ -570,35 +563,26 @@
   ;; motion-pass fold and stay closure-free (a foreign variable there cost
   ;; a fifth more instructions in the S1 crowd); the C compiler checks every
   ;; one against motion.h's value of the same name.
-  (define-syntax define-kernel-flag
-    (er-macro-transformer
-     (lambda (x r c)
-       (let ((name (cadr x)) (c-name (symbol->string (caddr x))) (value (cadddr x)))
-         `(,(r 'begin)
-           (,(r 'define-constant) ,name ,value)
-           (,(r 'foreign-declare)
-            ,(string-append "_Static_assert(" c-name " == " (number->string value)
-                            ", \"physics.scm and motion.h disagree on " c-name "\");")))))))
-  (define-kernel-flag flag-map DS_HAS_MAP 1)
-  (define-kernel-flag flag-gravity DS_GRAVITY 2)
-  (define-kernel-flag flag-swept DS_SWEPT 4)
-  (define-kernel-flag flag-ground DS_GROUND 8)
-  (define-kernel-flag flag-x DS_HAS_X 16)
-  (define-kernel-flag flag-y DS_HAS_Y 32)
-  (define-kernel-flag flag-vx DS_HAS_VX 64)
-  (define-kernel-flag flag-vy DS_HAS_VY 128)
-  (define-kernel-flag flag-ay DS_HAS_AY 256)
-  (define-kernel-flag flag-on DS_HAS_ON 512)
-  (define-kernel-flag flag-not-here DS_NOT_HERE 1024)
-  (define-kernel-flag flag-drop DS_DROP 2048)
-  (define-kernel-flag write-x DS_WRITE_X 1)
-  (define-kernel-flag write-y DS_WRITE_Y 2)
-  (define-kernel-flag write-vx DS_WRITE_VX 4)
-  (define-kernel-flag write-vy DS_WRITE_VY 8)
-  (define-kernel-flag write-ay DS_WRITE_AY 16)
-  (define-kernel-flag write-on DS_WRITE_ON 32)
-  (define-kernel-flag x-ratio DS_X_RATIO 64)
-  (define-kernel-flag y-ratio DS_Y_RATIO 128)
+  (define-c-constant flag-map DS_HAS_MAP 1)
+  (define-c-constant flag-gravity DS_GRAVITY 2)
+  (define-c-constant flag-swept DS_SWEPT 4)
+  (define-c-constant flag-ground DS_GROUND 8)
+  (define-c-constant flag-x DS_HAS_X 16)
+  (define-c-constant flag-y DS_HAS_Y 32)
+  (define-c-constant flag-vx DS_HAS_VX 64)
+  (define-c-constant flag-vy DS_HAS_VY 128)
+  (define-c-constant flag-ay DS_HAS_AY 256)
+  (define-c-constant flag-on DS_HAS_ON 512)
+  (define-c-constant flag-not-here DS_NOT_HERE 1024)
+  (define-c-constant flag-drop DS_DROP 2048)
+  (define-c-constant write-x DS_WRITE_X 1)
+  (define-c-constant write-y DS_WRITE_Y 2)
+  (define-c-constant write-vx DS_WRITE_VX 4)
+  (define-c-constant write-vy DS_WRITE_VY 8)
+  (define-c-constant write-ay DS_WRITE_AY 16)
+  (define-c-constant write-on DS_WRITE_ON 32)
+  (define-c-constant x-ratio DS_X_RATIO 64)
+  (define-c-constant y-ratio DS_Y_RATIO 128)
 
   (define fixnum-motion!
     (foreign-lambda scheme-object "ds_fixnum_motion" scheme-object u8vector scheme-object
@@ -625,7 +609,7 @@
   ;; #:skip-pipelines, then goes through fixnum-motion!; any other one
   ;; (flonums, other rationals, bignums, a NaN, skips, an unknown mode)
   ;; through motion-steps, the readable steps.
-  ;; With ground? the pass also does the contract's ground detection, which
+  ;; With ground? the pass also does ground detection (step 8), which
   ;; is only right when no entity of the scene is solid: the engine passes
   ;; it then, and only then.
   (define (motion-pass scene dt #!optional ground?)
@@ -769,7 +753,8 @@
           (set! last-support (cons solids entry))
           entry)))
 
-  ;; The contract's ground detection, reading the entity in one walk.
+  ;; Ground detection (docs/physics.org, Standing on things), reading the
+  ;; entity in one walk.
   (define (detect-on-solid scene entity dt)
     (entity-let entity ((gp #:gravity?) (skipp #:skip-pipelines) (known #:on-ground?)
                         (xp #:x) (yp #:y) (wp #:width) (hp #:height) (vyp #:vy))
@@ -978,7 +963,7 @@
   ;; All pairs i < j in list order; each pair sees the positions left by the
   ;; pairs before it. Only entities that collide take part, so a scene with
   ;; fewer than two of them costs one scan and returns the list itself.
-  ;; `method`: 'all-pairs visits every pair, as the contract describes;
+  ;; `method`: 'all-pairs visits every pair, as docs/physics.org describes;
   ;; 'spatial-hash visits only pairs that can overlap at their turn (see
   ;; broadphase.scm), with exactly the same result; 'auto (the default)
   ;; takes the hash from `spatial-hash-threshold` colliding entities on.

@@ -9,7 +9,7 @@
         srfi-4 (downstroke test) (downstroke sdl2) (downstroke entity)
         (downstroke scene) (downstroke tilemap) (downstroke renderer)
         (downstroke prefabs) (downstroke engine))
-(include-relative "pixels.scm")
+(include-relative "../../tests/pixels.scm")
 
 (unless (sdl-initialized?) (init!))
 

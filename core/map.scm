@@ -21,7 +21,7 @@
 ;;;
 ;;; Which layers collide: every tile layer, unless the layer has the property
 ;;; `collides` set to #f (a bool property; the string "false" or the int 0
-;;; do not opt out). So the contract's default holds (any non-zero tile
+;;; do not opt out). So the default of docs/physics.org holds (any non-zero tile
 ;;; is solid) and a decoration layer opts out with one property in Tiled.
 ;;;
 ;;; Infinite maps. Tiled stores an infinite map's layers as chunks at any

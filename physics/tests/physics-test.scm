@@ -1,5 +1,6 @@
-;;; The physics contract, rule by rule: one group per section of the
-;;; contract, named after it. Integer inputs, exact expected values.
+;;; The rules of docs/physics.org, one by one: each group is named after the
+;;; section of docs/physics.org whose rule it checks ("The pipeline: ..."),
+;;; then the step. Integer inputs, exact expected values.
 
 (import scheme (chicken base) (chicken string) (chicken format) (chicken condition)
         (downstroke test) (downstroke entity) (downstroke tilemap)
@@ -20,7 +21,7 @@
     (let loop ((ws words))
       (or (null? ws) (and (substring-index (car ws) text) (loop (cdr ws)))))))
 
-(test-group "2.1.2 apply-acceleration"
+(test-group "The pipeline: apply-acceleration"
   (let ((e (ent #:gravity? #t #:vy 3 #:ay -10)))
     (test "vy becomes vy + ay" '(-7 0) (at (apply-acceleration no-map e 16) #:vy #:ay))
     (test "ay is consumed once" '(-7 0)
@@ -32,7 +33,7 @@
   (let ((e (ent #:gravity? #t #:vy 3 #:ay -10 #:skip-pipelines '(acceleration))))
     (test-assert "skip symbol acceleration" (eq? e (apply-acceleration no-map e 16)))))
 
-(test-group "2.1.3 apply-gravity"
+(test-group "The pipeline: apply-gravity"
   (test "*gravity* is 1" 1 *gravity*)
   (test "adds gravity to vy" 4 (entity-ref (apply-gravity no-map (ent #:gravity? #t #:vy 3) 16) #:vy))
   (test "absent vy counts as 0" 1 (entity-ref (apply-gravity no-map (ent #:gravity? #t) 16) #:vy))
@@ -41,7 +42,7 @@
   (let ((e (ent #:gravity? #t #:vy 3 #:skip-pipelines '(gravity))))
     (test-assert "skip symbol gravity" (eq? e (apply-gravity no-map e 16)))))
 
-(test-group "2.1.4 / 2.1.6 apply-velocity-x, apply-velocity-y"
+(test-group "The pipeline: apply-velocity-x, apply-velocity-y"
   (test "x += vx, with no guard" '(13 5) (at (apply-velocity-x no-map (ent #:x 10 #:y 5 #:vx 3) 16) #:x #:y))
   (test "y += vy, with no guard" '(10 2) (at (apply-velocity-y no-map (ent #:x 10 #:y 5 #:vy -3) 16) #:x #:y))
   (test "absent velocity moves nothing" 10 (entity-ref (apply-velocity-x no-map (ent #:x 10) 16) #:x))
@@ -63,7 +64,7 @@
               (resolve-tile-collisions-x (scene-with (tiles '(1)) ) (ent #:x 0 #:y 0 #:width "wide" #:height 1 #:vx 1) 16))
   (test "finite flonums pass" 1.5 (entity-ref (apply-velocity-x no-map (ent #:x 1.0 #:vx 0.5) 16) #:x)))
 
-(test-group "2.4.1 cells covered by a body (entity-tile-cells)"
+(test-group "Tile collisions: cells covered by a body (entity-tile-cells)"
   (let ((tm (tiles '(0 0 0) '(0 0 0))))
     (test "a 10x10 body at (10,10) covers four cells" '((0 . 0) (1 . 0) (0 . 1) (1 . 1))
           (entity-tile-cells (ent #:x 10 #:y 10 #:width 10 #:height 10) tm))
@@ -81,7 +82,7 @@
   (test "tile-push-pos forward" 38 (tile-push-pos 5 3 16 10))
   (test "tile-push-pos backward" 64 (tile-push-pos -5 3 16 10)))
 
-(test-group "2.1.5 resolve-tile-collisions-x"
+(test-group "Tile collisions: resolve-tile-collisions-x"
   (let ((s (scene-with (tiles '(0 0 0 1 0) '(0 0 0 1 0) '(0 0 0 1 0)))))
     (test "moving right: right edge onto the tile's near side, vx 0" '(38 0)
           (at (resolve-tile-collisions-x s (ent #:x 40 #:y 16 #:width 10 #:height 10 #:vx 5) 16) #:x #:vx))
@@ -97,7 +98,7 @@
           (at (resolve-tile-collisions-x s (ent #:x 95/2 #:y 16 #:width 21/2 #:height 10 #:vx 1/2) 16) #:x #:vx))
     (test "y is untouched" 16
           (entity-ref (resolve-tile-collisions-x s (ent #:x 40 #:y 16 #:width 10 #:height 10 #:vx 5) 16) #:y)))
-  ;; The contract's literal step: a body already inside solid columns
+  ;; The plain step: a body already inside solid columns
   ;; (discrete mode; swept mode first takes it out, escape-test.scm).
   (let ((s (make-scene tilemap: (tiles '(0 0 1 1 0)) collision-mode: 'discrete)))
     (test "moving right stops at the nearest solid column" 2
@@ -110,7 +111,7 @@
     (test "cells outside the map are empty" -40
           (entity-ref (resolve-tile-collisions-x s (ent #:x -40 #:y 0 #:width 10 #:height 10 #:vx 5) 16) #:x))))
 
-(test-group "2.1.7 resolve-tile-collisions-y"
+(test-group "Tile collisions: resolve-tile-collisions-y"
   (let ((floor (scene-with (tiles '(0 0 0) '(0 0 0) '(1 1 1))))
         (ceiling (scene-with (tiles '(1 1 1) '(0 0 0) '(0 0 0)))))
     (test "moving down: feet onto the floor's top, vy 0" '(22 0)
@@ -131,7 +132,7 @@
     (test "moving up stops at the nearest solid row" 48
           (entity-ref (resolve-tile-collisions-y s (ent #:x 0 #:y 10 #:width 10 #:height 40 #:vy -1) 16) #:y))))
 
-(test-group "2.1.8 detect-on-solid: tile ground"
+(test-group "Standing on things: detect-on-solid, tile ground"
   (let ((s (scene-with (tiles '(0 0 0) '(0 0 0) '(1 1 1)))))
     (test "standing flush on the floor" #t
           (entity-ref (detect-on-solid s (ent #:gravity? #t #:x 0 #:y 22 #:width 10 #:height 10) 16) #:on-ground?))
@@ -155,7 +156,7 @@
     (test "neither corner over a tile" #f
           (entity-ref (detect-on-solid left (ent #:gravity? #t #:x 16 #:y 22 #:width 10 #:height 10) 16) #:on-ground?))))
 
-(test-group "2.1.8 detect-on-solid: entity ground"
+(test-group "Standing on things: detect-on-solid, entity ground"
   (define (player . more)
     (apply ent #:type 'player #:gravity? #t #:x 0 #:y 0 #:width 10 #:height 10 more))
   (define (platform x y . more)
@@ -180,7 +181,7 @@
     (test "through the scene, with no tilemap" #t
           (entity-ref (detect-on-solid s (player) 16) #:on-ground?))))
 
-(test-group "2.4.4 aabb-overlap?"
+(test-group "Solid entities: aabb-overlap?"
   (test-assert "overlapping" (aabb-overlap? 0 0 10 10 5 5 10 10))
   (test-assert "sharing an edge is not overlapping" (not (aabb-overlap? 0 0 10 10 10 0 10 10)))
   (test-assert "sharing a corner is not overlapping" (not (aabb-overlap? 0 0 10 10 10 10 10 10)))
@@ -197,7 +198,7 @@
   (test-assert "a rational and an integer overlapping" (aabb-overlap? 7/2 0 1 1 3 0 1 1))
   (test-assert "apart on y" (not (aabb-overlap? 0 0 10 10 0 20 10 10))))
 
-(test-group "2.4.2 resolve-entity-collisions"
+(test-group "Solid entities: resolve-entity-collisions"
   (define (box x y . more) (apply ent #:solid? #t #:x x #:y y #:width 10 #:height 10 more))
   (define (pair-result a b) (let-values (((a b) (resolve-pair a b))) (list a b)))
   (let ((r (pair-result (box 0 0) (box 6 2))))
@@ -267,7 +268,7 @@
     (test-assert "fewer than two solid entities: the list itself comes back"
                  (eq? es (resolve-entity-collisions es)))))
 
-(test-group "2.1.10 sync-groups"
+(test-group "Groups: sync-groups"
   (let* ((es (list (ent #:type 'boss #:x 100 #:y 50 #:group-id 'boss #:group-origin? #t)
                    (ent #:type 'arm #:x 0 #:y 0 #:group-id 'boss #:group-local-x 10 #:group-local-y 20)
                    (ent #:type 'second-origin #:x 0 #:y 0 #:group-id 'boss #:group-origin? #t
@@ -335,7 +336,7 @@
   (test "and back to the defaults" '(3 2) (fall-after 2)))
 
 ;; Many solid entities: ground detection asks a spatial hash of their tops.
-;; The answer must be the contract's, body for body.
+;; The answer must be the plain walk's, body for body.
 (test-group "entity ground with many solids: the same answer as walking them all"
   (define seed 5)
   (define (rnd n) (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648)) (modulo seed n))

@@ -28,7 +28,7 @@
         (chicken process) (chicken pathname) (chicken process-context) srfi-4
         (downstroke test) (downstroke sdl2) (downstroke scene) (downstroke camera)
         (downstroke tilemap) (downstroke renderer) (downstroke level) (downstroke mapdraw))
-(include-relative "pixels.scm")
+(include-relative "../../tests/pixels.scm")
 
 (init!)
 

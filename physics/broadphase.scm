@@ -1,8 +1,8 @@
 ;;; (downstroke broadphase): visit pairs of moving boxes in list order,
 ;;; without visiting every pair.
 ;;;
-;;; The entity-collision step must behave exactly like the contract's
-;;; all-pairs walk: pairs (p, q) with p < q in order, each seeing the
+;;; The entity-collision step must behave exactly like the all-pairs walk
+;;; of docs/physics.org (Solid entities): pairs (p, q) with p < q in order, each seeing the
 ;;; positions left by the pairs before it. `visit-pairs-in-order` calls
 ;;; (visit! p q) in that same order for a subset of the pairs that always
 ;;; includes every pair whose boxes overlap when its turn comes; skipping
@@ -19,7 +19,7 @@
    ;; and the overlap queries
    visit-pairs-in-order visit-near-pairs make-box-index box-index-near)
 
-  (import scheme (chicken base) (chicken fixnum) (chicken foreign))
+  (import scheme (chicken base) (chicken fixnum) (chicken foreign) (downstroke arith))
 
   ;; A box spanning more cells than this on an axis is "large".
   (define large-span 16)
@@ -30,10 +30,9 @@
   ;; coordinates) with an integer size is floor(n / (d size)): integer
   ;; division, no new rational.
   (define (cell-of v size)
-    (cond ((and (fixnum? v) (fixnum? size))
-           (if (fx>= v 0) (fx/ v size) (fx- (fx/ (fx+ v 1) size) 1)))
+    (cond ((and (fixnum? v) (fixnum? size)) (floor-div v size))
           ((and (exact? v) (exact-integer? size))
-           (integer-floor (numerator v) (* (denominator v) size)))
+           (floor-div (numerator v) (* (denominator v) size)))
           (else (->integer (floor (/ v size))))))
 
   ;; (cell-of (+ v w) size); for v = n/d and integers w and size that is
@@ -41,7 +40,7 @@
   (define (end-cell v w size)
     (if (and (not (fixnum? v)) (exact? v) (exact-integer? w) (exact-integer? size))
         (let ((d (denominator v)))
-          (integer-floor (+ (numerator v) (* w d)) (* d size)))
+          (floor-div (+ (numerator v) (* w d)) (* d size)))
         (cell-of (+ v w) size)))
 
   ;; Cell indices are fixnums unless a box is astronomically far out; the
@@ -51,13 +50,8 @@
   (define-inline (cell+1 a)
     (if (and (fixnum? a) (fx< a most-positive-fixnum)) (fx+ a 1) (+ a 1)))
 
-  ;; floor(a / b) for integers, b > 0.
-  (define (integer-floor a b)
-    (let ((q (quotient a b)))
-      (if (and (negative? a) (not (zero? (remainder a b)))) (- q 1) q)))
-
   ;; The C of this module is broadphase.c.
-  (foreign-declare "#include \"broadphase.c\"")
+  (foreign-declare "#include \"physics/broadphase.c\"")
 
   ;; The common case of span-of in C: coordinates that are fixnums or
   ;; rationals of fixnums, integer sizes and cell size. Fills `span` with

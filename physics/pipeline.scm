@@ -1,8 +1,8 @@
-;;; (downstroke pipeline): the contract's per-frame pipeline, twice.
+;;; (downstroke pipeline): the per-frame pipeline of docs/physics.org, twice.
 ;;;
-;;; contract-pipeline is the contract's list of steps as library code: each
+;;; contract-pipeline is docs/physics.org's list of steps as library code: each
 ;;; step (a define-pipeline step, its guard and skip symbol in front) over
-;;; every entity, in the contract's order. It is the reference, and where a
+;;; every entity, in that order. It is the reference, and where a
 ;;; custom engine-update starts: copy its body and move a step.
 ;;;
 ;;; engine-pipeline is what the engine runs (default-engine-update): the
@@ -18,9 +18,10 @@
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign)
           (downstroke scene) (downstroke physics) (downstroke tween)
-          (downstroke animation) (downstroke particles) (downstroke srfi-197))
+          (downstroke animation) (downstroke particles) (downstroke srfi-197)
+          (downstroke c-constants))
 
-  ;; The contract's pipeline (its section 2 and 3.4), one step after the
+  ;; The pipeline of docs/physics.org (The pipeline), one step after the
   ;; other over every entity of the scene, then the library's own last
   ;; step, particles (particles.scm), which no other step reads. The first step notes where each
   ;; immovable body starts the frame, so that the entity step carries a
@@ -47,38 +48,42 @@
   ;;; changes nothing, because its guard would have left every entity as
   ;;; it was; tests compare this pipeline with every step run in turn.
 
-  ;; Bits of what a list of entities needs.
-  (define need-tweens 1)        ; an entity has a #:tween
-  (define need-ground 2)        ; an entity has #:gravity?
-  (define need-pairs 4)         ; two or more entities have #:solid?
-  (define need-groups 8)        ; an entity has a #:group-id
-  (define need-animation 16)    ; an entity has #:animations
-  (define need-support 32)      ; an entity has #:solid? (it may hold others up)
-  (define need-start 64)        ; an entity has #:immovable? (a platform may carry)
-  (define need-particles 128)   ; an entity has an #:emitter
+  ;; Bits of what a list of entities needs, and the keys that ask for
+  ;; them: physics/needs.h states both for the C walk below.
+  (foreign-declare "#include \"physics/needs.h\"")
+  (define-c-constant need-tweens DS_NEED_TWEENS 1)         ; an entity has a #:tween
+  (define-c-constant need-ground DS_NEED_GROUND 2)         ; an entity has #:gravity?
+  (define-c-constant need-pairs DS_NEED_PAIRS 4)           ; two or more entities have #:solid?
+  (define-c-constant need-groups DS_NEED_GROUPS 8)         ; an entity has a #:group-id
+  (define-c-constant need-animation DS_NEED_ANIMATION 16)  ; an entity has #:animations
+  (define-c-constant need-support DS_NEED_SUPPORT 32)      ; an entity has #:solid? (it may hold others up)
+  (define-c-constant need-start DS_NEED_START 64)          ; an entity has #:immovable? (a platform may carry)
+  (define-c-constant need-particles DS_NEED_PARTICLES 128) ; an entity has an #:emitter
+  (define-c-constant key-tween DS_KEY_TWEEN 0)
+  (define-c-constant key-gravity DS_KEY_GRAVITY 1)
+  (define-c-constant key-solid DS_KEY_SOLID 2)
+  (define-c-constant key-group-id DS_KEY_GROUP_ID 3)
+  (define-c-constant key-animations DS_KEY_ANIMATIONS 4)
+  (define-c-constant key-immovable DS_KEY_IMMOVABLE 5)
+  (define-c-constant key-emitter DS_KEY_EMITTER 6)
+  (define-c-constant need-key-count DS_NEED_KEYS 7)
+  (define need-keys
+    (let ((v (make-vector need-key-count)))
+      (for-each (lambda (i k) (vector-set! v i k))
+                (list key-tween key-gravity key-solid key-group-id key-animations key-immovable key-emitter)
+                (list #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter))
+      v))
 
-  ;; The walk below, in C: it reads every pair of every entity each frame,
-  ;; which in Scheme was a twentieth of a crowd scene's time. Bit i is set
-  ;; when some entity holds need-keys[i] with a true value, except for
-  ;; #:solid? (bit 2), whose entities are counted in bits 8-9 (0, 1, 2 or
-  ;; more). Bit 5 (#:immovable?) is need-start, bit 6 (#:emitter)
-  ;; need-particles. -1 when an entity is not a
-  ;; list of pairs: the Scheme walk then raises the error.
-  (foreign-declare "#include \"needs.c\"")
-  (define need-keys (vector #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter))
+  ;; The walk below, in C (needs.c): it reads every pair of every entity
+  ;; each frame, which in Scheme was a twentieth of a crowd scene's time.
+  ;; -1 when an entity is not a list of pairs: the Scheme walk then raises
+  ;; the error.
+  (foreign-declare "#include \"physics/needs.c\"")
   (define c-needs (foreign-lambda scheme-object "ds_pipeline_needs" scheme-object scheme-object))
 
   (define (pipeline-needs entities)
     (let ((c (c-needs entities need-keys)))
-      (if (fx< c 0)
-          (scheme-pipeline-needs entities)
-          (fxior (fxior (fxand c (fxior (fxior need-tweens need-ground) (fxior need-groups need-animation)))
-                        (fxior (if (fx= 0 (fxand c 32)) 0 need-start)
-                               (if (fx= 0 (fxand c 64)) 0 need-particles)))
-                 (case (fxshr c 8)
-                   ((0) 0)
-                   ((1) need-support)
-                   (else (fxior need-pairs need-support)))))))
+      (if (fx< c 0) (scheme-pipeline-needs entities) c)))
 
   (define (scheme-pipeline-needs entities)
     (let next ((es entities) (bits 0) (solids 0))
@@ -102,7 +107,7 @@
 
   (define (needs? bits need) (not (fx= 0 (fxand bits need))))
 
-  ;; The contract's pipeline, as a pure function of a scene.
+  ;; The same pipeline, as a pure function of a scene.
   ;; Steps 1-7 read no other entity, so they run back to back per entity
   ;; (one list built instead of seven): tweens, then the motion pass
   ;; (steps 2-7 in one walk, see physics.scm). Ground detection sees every

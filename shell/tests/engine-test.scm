@@ -111,7 +111,7 @@
                    (and (substring-index "bad argument count" t) (not (substring-index "update: hook" t)))))
     (delete-file* src) (delete-file* so)))
 
-(test-group "2.3 engine-update dispatch"
+(test-group "A pipeline of your own: engine-update dispatch"
   (let ((g (game-with (make-scene entities: (list (ent #:gravity? #t #:x 0 #:y 0 #:vy 0))))))
     (run-engine-update! g 16)
     (test "#f runs the default pipeline" '(1 1) (list (entity-ref (first-entity g) #:vy)
@@ -149,7 +149,7 @@
     (test "the camera follows after update:" 680 (camera-x (scene-camera (game-scene g))))
     (test "frame counter" 1 (game-frame g))))
 
-(test-group "2.1 the default pipeline: order of the steps"
+(test-group "The pipeline: the default pipeline's order of the steps"
   ;; ay set by update: acts once, on the next frame, before gravity.
   (let ((g (game-with (make-scene entities: (list (ent #:gravity? #t #:x 0 #:y 0 #:vy 0 #:ay -10))))))
     (game-step! g)
@@ -320,7 +320,7 @@
     (test "it ends flush with the wall" 32 (entity-ref (first-entity g) #:x))
     (test "the finished tween is removed" #f (entity-ref (first-entity g) #:tween #f))))
 
-(test-group "2.3 the contract's custom pipeline (chain and cut)"
+(test-group "A pipeline of your own: a custom pipeline with chain and cut"
   (define (my-engine-update game dt)
     (let ((scene (game-scene game)))
       (when scene

@@ -3,7 +3,7 @@
 
 (import (chicken condition) scheme (chicken base) (chicken file) (chicken format) (chicken string)
         (chicken gc) srfi-4 (downstroke test) (downstroke sdl2) (downstroke text))
-(include-relative "pixels.scm")
+(include-relative "../../tests/pixels.scm")
 
 (init!)
 

@@ -23,7 +23,7 @@
         (let ((p (assq key e)))
           (if p (cdr p) default))))
 
-  ;; Entities written as plists, the way the contract shows them, must be
+  ;; Entities written as plists, the way docs/entities.org shows them, must be
   ;; converted before they are read or written (make-scene, update-scene and
   ;; scene-add-entity do it). Only the first element is looked at, so this
   ;; costs one test per call; without it the user would see assq's bare
@@ -137,7 +137,7 @@
     (list (cons #:x x) (cons #:y y) (cons #:width w) (cons #:height h)
           (cons #:vx 0) (cons #:vy 0)))
 
-  ;; Users write entities as plists, the way the physics contract shows them.
+  ;; Users write entities as plists, the way docs/entities.org shows them.
   (define (plist->entity plist)
     (let loop ((rest plist) (out '()))
       (cond ((null? rest) (reverse out))
