@@ -77,6 +77,24 @@
       (do ((k 0 (fx+ k 1)) (p 1.0 (fp* p 10.0))) ((fx= k 23) v)
         (vector-set! v k p))))
 
+  ;; The double nearest p/q (positive exact integers), ties to even.
+  ;; CHICKEN's exact->inexact rounds a bignum wrongly at times (it gives
+  ;; 42022006634090004480 for 42022006634090000000, whose nearest double is
+  ;; 42022006634089996288), so the rounding is done here: u is the unit of
+  ;; the last of the 53 bits kept (never below 2^-1074, the least
+  ;; subnormal's), Q the bits, R/D what is left over.
+  (define (nearest-flonum p q)
+    (define (divide u)
+      (if (>= u 0)
+          (let ((d (arithmetic-shift q u))) (values (quotient p d) (remainder p d) d))
+          (let ((n (arithmetic-shift p (- u)))) (values (quotient n q) (remainder n q) q))))
+    (let* ((u1 (- (integer-length p) (integer-length q) 53))  ; p/q / 2^u1 is in [2^52, 2^54)
+           (u (max -1074 (receive (bits left over) (divide u1)
+                           (if (>= bits (expt 2 53)) (+ u1 1) u1)))))
+      (receive (bits left over) (divide u)
+        (let ((m (if (or (> (* 2 left) over) (and (= (* 2 left) over) (odd? bits))) (+ bits 1) bits)))
+          (* (exact->inexact m) (expt 2.0 u))))))
+
   ;; The continuation bytes allowed after each lead byte of a UTF-8
   ;; sequence (RFC 3629, section 4): lead from, lead to, second byte from,
   ;; second byte to, sequence length; every later byte is 80-BF.
@@ -204,7 +222,9 @@
                               (let ((digits (make-string (if sticky? (fx+ kept 1) kept) #\1)))
                                 (do ((k 0 (fx+ k 1))) ((fx= k kept))
                                   (string-set! digits k (digit-at (fx+ first k))))
-                                (exact->inexact (* (string->number digits) (expt 10 x)))))))))))
+                                (if (>= x 0)
+                                    (nearest-flonum (* (string->number digits) (expt 10 x)) 1)
+                                    (nearest-flonum (string->number digits) (expt 10 (- x))))))))))))
         (if negative? (fpneg magnitude) magnitude)))
     (define (hex4 i)
       (let loop ((k 0) (v 0))
