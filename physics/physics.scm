@@ -557,7 +557,7 @@
   ;; `flags`, puts the new values in `out` and returns which keys to write
   ;; (a key that holds its new value already is not written, as entity-set
   ;; does). Same formulas in
-  ;; the same order; tests/pipeline-test.scm compares the two paths. The
+  ;; the same order; physics/tests/pipeline-test.scm compares the two paths. The
   ;; code is motion.c; the flags and answers are motion.h's, by name.
   ;; Each flag is a Scheme constant, so that the flag expressions of
   ;; motion-pass fold and stay closure-free (a foreign variable there cost

@@ -10,7 +10,7 @@
 ;;; path: it skips steps no entity needs, runs steps 2-7 as one pass
 ;;; (physics' motion-pass, with its C kernel for small fixnums), and folds
 ;;; tile ground detection into that pass when its precondition holds (see
-;;; ground-joins-motion? below). tests/pipeline-test.scm runs both on random
+;;; ground-joins-motion? below). physics/tests/pipeline-test.scm runs both on random
 ;;; scenes, frame after frame, and compares every entity.
 
 (module (downstroke pipeline)

@@ -1,5 +1,5 @@
 ;;; bin/demo-shmup in a real X11 window (xvfb-run, SDL_VIDEODRIVER unset,
-;;; as tests/window-test.scm does for the engine): the sprite keys
+;;; as shell/tests/window-test.scm does for the engine): the sprite keys
 ;;; (offsets, the banking #:angle), tile particles with their colour and
 ;;; alpha modulation, and the TTF score go through the window's renderer
 ;;; too, and come out as in the headless run. Without xvfb-run the suite

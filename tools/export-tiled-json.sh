@@ -1,5 +1,5 @@
 #!/bin/sh
-# Tiled's own JSON export of every map the tests load, for tests/tmj-test.scm.
+# Tiled's own JSON export of every map the tests load, for tiled/tests/tmj-test.scm.
 #
 #   sh tools/export-tiled-json.sh [DEST]
 #

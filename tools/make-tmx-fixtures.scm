@@ -3,7 +3,7 @@
 ;;;     csi -q -s tools/make-tmx-fixtures.scm
 ;;; The files are committed; this script documents how the encoded ones were
 ;;; made (it uses only the encoders of (downstroke decode), never the loader).
-;;; The cell values every encoding holds are `tmx-cells` in tests/tmx-test.scm.
+;;; The cell values every encoding holds are `tmx-cells` in tiled/tests/tmx-test.scm.
 
 (import scheme (chicken base) (chicken format) (chicken file) (chicken string)
         (chicken bitwise) srfi-4 (downstroke decode))
