@@ -9,6 +9,7 @@
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <unistd.h>
@@ -27,6 +28,7 @@
 
 #define REPL_AGAIN (-1)         /* nothing to do now: try on the next poll */
 #define REPL_FAILED (-2)        /* this client (or call) failed: see repl_why */
+#define REPL_DROPPED (-3)       /* a connection was closed at once: see repl_why */
 
 static char repl_why[256];
 
@@ -84,26 +86,30 @@ static int repl_bound_port(int fd) {
 static int repl_spare(void) { return open("/dev/null", O_RDONLY | O_CLOEXEC); }
 
 /* The next waiting connection; REPL_AGAIN when none is waiting;
- * REPL_FAILED on any other error (out of descriptors, the waiting
- * connection is accepted and closed at once, with the spare descriptor
- * *spare, which is then reopened). */
+ * REPL_DROPPED when, out of descriptors, the waiting one was accepted with
+ * the spare descriptor *spare (then reopened) and closed at once, so that
+ * it does not wait in vain; REPL_FAILED on any other error. */
 static int repl_accept(int lfd, int32_t *spare) {
   int fd = accept(lfd, NULL, NULL);
   if (fd >= 0) {
+    /* answers go at once: each poll sends all it has in one call */
+    int one = 1;
     if (repl_prepare(fd) < 0) { close(fd); return REPL_AGAIN; }
+    setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
     return fd;
   }
   if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR || errno == ECONNABORTED
       || errno == EPROTO)
     return REPL_AGAIN;
   if ((errno == EMFILE || errno == ENFILE) && *spare >= 0) {
+    int e = errno;
     close(*spare);
     fd = accept(lfd, NULL, NULL);
     if (fd >= 0) close(fd);
     *spare = repl_spare();
-    errno = EMFILE;
-    repl_fail("a connection was closed at once, the process being out of descriptors");
-    return REPL_FAILED;
+    errno = e;
+    repl_fail("closed a connection at once, being out of descriptors");
+    return fd >= 0 && *spare >= 0 ? REPL_DROPPED : REPL_FAILED;
   }
   return repl_fail("cannot accept a connection");
 }

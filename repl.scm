@@ -54,6 +54,7 @@
   (define chunk-size 65536)
 
   (define-foreign-variable repl-again int "REPL_AGAIN")
+  (define-foreign-variable repl-dropped int "REPL_DROPPED")
   (define last-failure (foreign-lambda c-string "repl_last_failure"))
   (define c-listen (foreign-lambda int "repl_listen" int int))
   (define c-bound-port (foreign-lambda int "repl_bound_port" int))
@@ -131,10 +132,12 @@
   ;; state: proving (no secret yet), open, or closing (its input has
   ;; ended; it goes when its output is sent). text: received, not yet read
   ;; as Scheme. Output waits in head (from head-start), then in tail (a
-  ;; string port), out-bytes in all. drop: why it must go, or #f.
+  ;; string port), out-bytes in all; it is sent when polled, and while an
+  ;; evaluation writes, each time out-bytes reaches flush-at. drop: why it
+  ;; must go, or #f.
   (define-record-type client
     (%make-client fd in out state deadline text scan try? skipping?
-                  head head-start tail out-bytes waiting-since drop raised? port)
+                  head head-start tail out-bytes flush-at waiting-since drop raised? port)
     client?
     (fd client-fd) (in client-in) (out client-out)
     (state client-state client-state-set!)
@@ -147,13 +150,14 @@
     (head-start client-head-start client-head-start-set!)
     (tail client-tail client-tail-set!)
     (out-bytes client-out-bytes client-out-bytes-set!)
+    (flush-at client-flush-at client-flush-at-set!)
     (waiting-since client-waiting-since client-waiting-since-set!)
     (drop client-drop client-drop-set!)
     (raised? client-raised? client-raised?-set!)
     (port client-port client-port-set!))
 
   (define (make-client fd in out state deadline)
-    (%make-client fd in out state deadline "" (make-scan) #f #f "" 0 (open-output-string) 0 0 #f #f #f))
+    (%make-client fd in out state deadline "" (make-scan) #f #f "" 0 (open-output-string) 0 chunk-size 0 #f #f #f))
 
   (define (check-keyword who name v)
     (unless (and (exact-integer? v) (> v 0))
@@ -188,7 +192,7 @@
   ;; The listening socket, then the secret written beside its port number;
   ;; nothing is left open if a step fails.
   (define (listen-with-secret port dir)
-    (let ((fd (c-listen port 16)))
+    (let ((fd (c-listen port 64)))
       (when (< fd 0) (error (sprintf "repl: ~a port ~a" (last-failure) port)))
       (let ((dir-fd -1))
         (handle-exceptions e
@@ -248,7 +252,8 @@
                     (discard-output! c)
                     (client-drop-set! c (sprintf "dropped a client: more than ~a bytes of output were waiting for it (repl-max-output)"
                                                  (repl-max-output-of r))))
-                   ((> (client-out-bytes c) chunk-size) (flush! c)))))))
+                   ;; a long answer goes out as it is written, a chunk at a time
+                   ((>= (client-out-bytes c) (client-flush-at c)) (flush! c)))))))
 
   (define (discard-output! c)
     (client-head-set! c "") (client-head-start-set! c 0) (client-tail-set! c (open-output-string))
@@ -256,6 +261,10 @@
 
   ;; Sends what the kernel takes now.
   (define (flush! c)
+    (flush-some! c)
+    (client-flush-at-set! c (+ (client-out-bytes c) chunk-size)))
+
+  (define (flush-some! c)
     (let loop ()
       (when (and (> (client-out-bytes c) 0) (not (client-drop c)))
         (when (= (client-head-start c) (string-length (client-head c)))
@@ -278,22 +287,38 @@
     (emit! r c "> ")
     (unless (client-fd c) (flush-output (client-out c))))
 
-  ;; The port an evaluation writes to. Past repl-max-output it raises an
-  ;; error once, which ends an evaluation that would print forever (a
-  ;; circular list); the client is then dropped.
+  ;; The port an evaluation writes to. CHICKEN's write hands it a
+  ;; character at a time, so those gather in a buffer of the port's own.
+  ;; Past repl-max-output it raises an error once, which ends an
+  ;; evaluation that would print forever (a circular list); the client is
+  ;; then dropped.
   (define (output-port r c)
     (or (client-port c)
-        (let ((p (if (client-fd c)
-                     (make-output-port
-                      (lambda (s)
-                        (emit! r c s)
-                        (when (and (client-drop c) (not (client-raised? c)))
-                          (client-raised?-set! c #t)
-                          (error "repl: the output is more than repl-max-output bytes; the client is dropped")))
-                      void)
-                     (client-out c))))
+        (let ((p (if (client-fd c) (socket-output-port r c) (client-out c))))
           (client-port-set! c p)
           p)))
+
+  (define (socket-output-port r c)
+    (let* ((size 4096) (buffer (make-string size)) (used 0))
+      (define (pass! text)
+        (unless (= used 0)
+          (emit! r c (substring buffer 0 used))
+          (set! used 0))
+        (unless (string=? text "") (emit! r c text))
+        (when (and (client-drop c) (not (client-raised? c)))
+          (client-raised?-set! c #t)
+          (error "repl: the output is more than repl-max-output bytes; the client is dropped")))
+      (make-output-port
+       (lambda (text)
+         (let ((n (string-length text)))
+           (if (fx< (fx+ used n) size)
+               (let copy ((i 0))
+                 (if (fx< i n)
+                     (begin (string-set! buffer (fx+ used i) (string-ref text i)) (copy (fx+ i 1)))
+                     (set! used (fx+ used n))))
+               (pass! text))))
+       void
+       (lambda () (pass! "")))))
 
   ;; A message to every client past its secret (the game shell says a hook
   ;; failed).
@@ -335,6 +360,7 @@
                                                                      (+ (current-process-milliseconds) (repl-timeout-of r)))))))
                  (loop (+ k 1)))
                 ((= fd repl-again) (void))
+                ((= fd repl-dropped) (tell-owner! r (last-failure)) (loop (+ k 1)))
                 (else (tell-owner! r (last-failure))))))))
 
   ;; #t to keep the client.
@@ -501,6 +527,7 @@
   (define (say-error! r c e)
     (let ((out (output-port r c)))
       (print-error-message e out)
+      (flush-output out)
       (prompt! r c)))
 
   (define (evaluate! r c datum)
@@ -515,6 +542,7 @@
                         (unless (eq? v (void)) (write v out) (newline out)))
                       results))
         (e () (print-error-message e out)))
+      (condition-case (flush-output out) (e () (void)))
       (prompt! r c)))
 
   ;;; Where an expression may end. The scanner follows CHICKEN's lexical
