@@ -1,4 +1,6 @@
-;;; (downstroke repl): a read-eval-print loop that a running game serves between its frames, on standard input and/or a loopback TCP port that only the game's owner can use.
+;;; (downstroke repl): a read-eval-print loop that a running game serves
+;;; between its frames, on standard input and/or a loopback TCP port that
+;;; only the game's owner can use.
 ;;;
 ;;; The port is on 127.0.0.1 and each connection must first prove that its
 ;;; user is the game's: its first line must be a secret of 32 random bytes
@@ -390,8 +392,10 @@
 
   (define (prove! r c now)
     (let* ((buf (repl-buffer r))
-           (n (c-recv (client-fd c) buf chunk-size))
-           (room (+ (string-length (repl-secret r)) 2)))
+           (room (+ (string-length (repl-secret r)) 2))
+           ;; no more than the secret's line can hold: the rest waits in
+           ;; the kernel until the client has proved itself
+           (n (c-recv (client-fd c) buf (- (+ room 1) (string-length (client-text c))))))
       (cond ((> n 0) (client-text-set! c (string-append (client-text c) (substring buf 0 n))))
             ((= n 0) (client-drop-set! c "refused a connection: it closed before sending the secret"))
             ((= n repl-again) (void))

@@ -48,6 +48,9 @@
 ;;; ------------------------------------------------------------------
 ;;; Part one: a REPL served by this process.
 
+;; What the REPLs here tell the owner (on the standard error) is kept.
+(define rt-log (open-output-string))
+
 (define rt-secrets (make-pathname rt-dir "secrets"))
 
 ;; Polls r, waiting up to 1 ms each time for fd's answer, until it ends
@@ -87,6 +90,8 @@
        (let loop ((i 0))
          (or (= i 64)
              (and (memv (string-ref text i) (string->list "0123456789abcdef")) (loop (+ i 1)))))))
+
+(parameterize ((current-error-port rt-log))
 
 (test-group "repl: the owner's secret, in a file only the owner can read"
   (let* ((r1 (make-repl port: 0 secret-directory: rt-secrets))
@@ -278,6 +283,16 @@
                  (let-values (((n ended?) (rc-drain fd 2000))) (and ended? (< n 12000000))))
     (rc-close fd)
     (repl-close! r)))
+
+(test-group "repl: refusals and drops are told to the owner"
+  ;; each REPL's first; those following within a second are counted
+  (let ((log (get-output-string rt-log)))
+    (for-each (lambda (line) (test-assert line (substring-index line log)))
+              '("refused a connection: its first line was not the secret"
+                "refused a connection: 2 are open (repl-max-clients)"
+                "dropped a client: it sent an expression longer than 1000 bytes (repl-max-input)"
+                "dropped a client: more than 100000 bytes of output were waiting for it (repl-max-output)"
+                "dropped a client: it read none of its output for 200 ms (repl-timeout)")))))
 
 ;;; ------------------------------------------------------------------
 ;;; Part two: a game serving its REPL in a child process.
