@@ -55,6 +55,9 @@
   ;; frames.
   (define chunk-size 65536)
 
+  ;; Below this many bytes, unfinished text is read again at each line end.
+  (define retry-size 16384)
+
   (define-foreign-variable repl-again int "REPL_AGAIN")
   (define-foreign-variable repl-dropped int "REPL_DROPPED")
   (define last-failure (foreign-lambda c-string "repl_last_failure"))
@@ -475,7 +478,13 @@
               (client-skipping?-set! c #f)
               (add-text! c (substring text at))))
           (begin
-            (when (scan! s text) (client-try?-set! c #t))
+            (when (or (scan! s text)
+                      ;; the reader may find an error the scanner does not
+                      ;; see (a bad character in a blob, say): a short text
+                      ;; is tried at each line end, so that it is reported
+                      (and (< (string-length (client-text c)) retry-size)
+                           (substring-index "\n" text)))
+              (client-try?-set! c #t))
             (client-text-set! c (string-append (client-text c) text))))))
 
   ;; Reads and evaluates each complete expression of the text, up to a
