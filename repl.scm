@@ -335,15 +335,17 @@
                   (prompt! r c)))
               (repl-clients r)))
 
-  ;;; Each poll: accept who is waiting, then serve each client once.
+  ;;; Each poll: serve each client once, then accept who is waiting.
 
+  ;; Serving first closes the clients that have gone, so their
+  ;; descriptors are free for the connections accepted next.
   (define (repl-poll! r)
-    (when (repl-listener r) (accept-waiting! r))
     (let ((now (current-process-milliseconds)))
       (repl-clients-set! r (let loop ((cs (repl-clients r)))
                              (cond ((null? cs) '())
                                    ((serve! r (car cs) now) (cons (car cs) (loop (cdr cs))))
-                                   (else (loop (cdr cs))))))))
+                                   (else (loop (cdr cs)))))))
+    (when (repl-listener r) (accept-waiting! r)))
 
   (define (socket-count r)
     (let loop ((cs (repl-clients r)) (n 0))
