@@ -32,11 +32,14 @@
 
   ;;; The limits, each a parameter read by make-repl (and a keyword of it).
 
+  ;; what: the parameter or keyword, in the error's words
+  (define (check-limit what v)
+    (unless (and (exact-integer? v) (> v 0))
+      (error (sprintf "~a ~s must be a positive integer" what v)))
+    v)
+
   (define (positive-limit name)
-    (lambda (v)
-      (unless (and (exact-integer? v) (> v 0))
-        (error (sprintf "~a: ~s must be a positive integer" name v)))
-      v))
+    (lambda (v) (check-limit (sprintf "~a:" name) v)))
 
   ;; Connections open at once (the terminal aside); one more is closed at once.
   (define repl-max-clients (make-parameter 8 (positive-limit 'repl-max-clients)))
@@ -91,7 +94,7 @@
   (define (secret-name port) (sprintf "repl-~a" port))
 
   (define (hex-secret)
-    (let* ((bytes (make-string 32)))
+    (let ((bytes (make-string 32)))
       (when (< (c-random bytes 32) 0) (error (sprintf "repl: ~a" (last-failure))))
       (apply string-append
              (map (lambda (ch)
@@ -164,10 +167,6 @@
   (define (make-client fd in out state deadline)
     (%make-client fd in out state deadline "" (make-scan) #f #f "" 0 (open-output-string) 0 chunk-size 0 #f #f #f))
 
-  (define (check-keyword who name v)
-    (unless (and (exact-integer? v) (> v 0))
-      (error (sprintf "~a: ~a ~s must be a positive integer" who name v))))
-
   ;; port: a TCP port number (0: any free one, see repl-port), or #f;
   ;; stdin?: serve standard input too (the terminal needs no secret).
   (define (make-repl #!key (port #f) (stdin? #f)
@@ -176,10 +175,10 @@
                      (secret-directory #f))
     (unless (or (not port) (and (exact-integer? port) (<= 0 port 65535)))
       (error (sprintf "repl: the port ~s must be an integer from 0 to 65535, or #f" port)))
-    (check-keyword 'make-repl "max-clients:" max-clients)
-    (check-keyword 'make-repl "max-input:" max-input)
-    (check-keyword 'make-repl "max-output:" max-output)
-    (check-keyword 'make-repl "timeout:" timeout)
+    (check-limit "make-repl: max-clients:" max-clients)
+    (check-limit "make-repl: max-input:" max-input)
+    (check-limit "make-repl: max-output:" max-output)
+    (check-limit "make-repl: timeout:" timeout)
     (unless (or (not secret-directory) (string? secret-directory))
       (error (sprintf "make-repl: secret-directory: ~s must be a directory name or #f" secret-directory)))
     (let-values (((listener spare dir-fd file secret)

@@ -241,9 +241,9 @@
 
 (test-group "repl: limits a game can raise"
   (test-assert "repl-max-input refuses a value that is no positive integer, by name"
-               (substring-index "repl-max-input" (rt-error-text (lambda () (repl-max-input 0)))))
+               (substring-index "repl-max-input: 0 must be" (rt-error-text (lambda () (repl-max-input 0)))))
   (test-assert "make-repl refuses a bad max-output:, by name"
-               (substring-index "max-output:" (rt-error-text (lambda () (make-repl max-output: 'lots)))))
+               (substring-index "make-repl: max-output: lots must be" (rt-error-text (lambda () (make-repl max-output: 'lots)))))
   (let* ((r (parameterize ((repl-max-clients 2)) (make-repl port: 0 secret-directory: rt-secrets)))
          (a (rt-owner r))
          (b (rt-owner r))
@@ -268,18 +268,16 @@
   (let* ((r (make-repl port: 0 secret-directory: rt-secrets max-output: 100000))
          (fd (rt-owner r)))
     (rc-send fd "(make-string 20000000 #\\a)\n")
-    (test "a client that does not read an answer past max-output is dropped, each poll returning" 50
-          (let loop ((i 0)) (if (= i 50) i (begin (repl-poll! r) (loop (+ i 1))))))
-    (test-assert "it got less than the answer, then the end"
+    (let loop ((i 0)) (when (< i 50) (repl-poll! r) (loop (+ i 1))))
+    (test-assert "a client that reads none of an answer past max-output is dropped: it gets less, then the end"
                  (let-values (((n ended?) (rc-drain fd 2000))) (and ended? (< n 20000000))))
     (rc-close fd)
     (repl-close! r))
   (let* ((r (make-repl port: 0 secret-directory: rt-secrets max-output: 100000000 timeout: 200))
          (fd (rt-owner r)))
     (rc-send fd "(make-string 12000000 #\\a)\n")
-    (test "a client that reads nothing of its answer for the timeout is dropped, each poll returning" 400
-          (let loop ((i 0)) (if (= i 400) i (begin (repl-poll! r) (rc-sleep 1) (loop (+ i 1))))))
-    (test-assert "it got less than the answer, then the end"
+    (let loop ((i 0)) (when (< i 400) (repl-poll! r) (rc-sleep 1) (loop (+ i 1))))
+    (test-assert "a client that reads nothing for the timeout is dropped: it gets less than its answer, then the end"
                  (let-values (((n ended?) (rc-drain fd 2000))) (and ended? (< n 12000000))))
     (rc-close fd)
     (repl-close! r)))
