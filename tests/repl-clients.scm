@@ -72,7 +72,7 @@ EOF
 ;; Whether this process can open the file for reading.
 (define rc-can-read?
   (foreign-lambda* bool ((c-string path))
-    "int fd = open(path, O_RDONLY); if (fd >= 0) close(fd); C_return(fd >= 0);"))
+    "int fd = path ? open(path, O_RDONLY) : -1; if (fd >= 0) close(fd); C_return(fd >= 0);"))
 
 (define rc-exit (foreign-lambda void "_exit" int))
 (define rc-sleep (foreign-lambda* void ((int ms)) "poll(NULL, 0, ms);"))
