@@ -315,6 +315,10 @@
                   (print "repl-test: the game ended at frame " (game-frame game))
                   (flush-output))))))
 
+;; The games started and not yet seen to end, stopped at the end of the
+;; suite should a failure leave one running.
+(define rt-games '())
+
 ;; (values stdout pid port secret-file) of a game started with the shell
 ;; prefix (a ulimit), its standard error going to err.
 (define (rt-start-game script prefix err)
@@ -322,6 +326,7 @@
                 (process (sprintf "~a exec env -u XDG_RUNTIME_DIR HOME=~a SDL_VIDEODRIVER=dummy SDL_AUDIODRIVER=dummy CHICKEN_REPOSITORY_PATH=~a csi -q -s ~a 2>~a"
                                   prefix (qs rt-home) (qs (absolute-repository-path)) (qs script) (qs err)))))
     (close-output-port in)
+    (set! rt-games (cons pid rt-games))
     (let* ((line (let loop ((k 0))
                    (let ((l (read-line out)))
                      (cond ((eof-object? l) "")
@@ -389,7 +394,10 @@
   (flush-output)
   (flush-output (current-error-port))
   (process-fork (lambda () (rc-exit (handle-exceptions e 99 (thunk))))))
-(define (rt-status pid) (let-values (((p ok? status) (process-wait pid))) status))
+(define (rt-status pid)
+  (let-values (((p ok? status) (process-wait pid)))
+    (set! rt-games (let drop ((ps rt-games)) (cond ((null? ps) '()) ((= (car ps) pid) (cdr ps)) (else (cons (car ps) (drop (cdr ps)))))))
+    status))
 (define (rt-child thunk) (rt-status (rt-fork thunk)))
 
 ;; A child's verdict: 0 when the connection ended having sent nothing.
@@ -594,4 +602,5 @@
                (let ((t (rt-error-text (lambda () (repl-connect 7 (make-pathname rt-dir "none"))))))
                  (and (substring-index "none" t) (substring-index "port 7" t)))))
 
+(for-each (lambda (pid) (handle-exceptions e #f (process-signal pid signal/kill) (process-wait pid))) rt-games)
 (delete-directory rt-dir #t)
