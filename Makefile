@@ -93,6 +93,7 @@ $(BUILD)/downstroke.pipeline.so: needs.c
 $(BUILD)/downstroke.renderer.so: keys.c
 $(BUILD)/downstroke.physics.so: motion.c motion.h
 $(BUILD)/downstroke.broadphase.so: broadphase.c
+$(BUILD)/downstroke.repl.so: repl.c
 
 # Tiled's own example maps, from Debian's tiled package (cached in tests/data).
 examples:
