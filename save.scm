@@ -266,10 +266,15 @@ EOF
                   (string=? prefix (substring entry 0 (string-length prefix))))
          (let* ((rest (substring entry (string-length prefix)))
                 (dot (substring-index "." rest))
-                (pid (and dot (< 0 dot 10) (string->number (substring rest 0 dot)))))
+                (digits (and dot (< 0 dot 10) (substring rest 0 dot)))
+                (pid (and digits (every-digit? digits) (string->number digits))))
            (when (and (exact-integer? pid) (not (= pid (current-process-id))) (c-process-gone? pid))
              (c-unlink (string-append dir "/" entry))))))
      (condition-case (directory dir #t) (e () '()))))
+
+  (define (every-digit? s)
+    (let loop ((i 0))
+      (or (= i (string-length s)) (and (char-numeric? (string-ref s i)) (loop (+ i 1))))))
 
   ;;; Reading.
 
