@@ -249,36 +249,44 @@
            (lambda () (sv-shell (sprintf "umount ~a" (qs mnt)))))))))
 
 ;; Two processes save the same name many times while this one reads it:
-;; every read gives one writer's whole value (or the one before them), and
-;; a writer either succeeds or fails with a save-data error giving a real
-;; reason, never "Success".
+;; every read gives one writer's whole value (or the one before them).
+;; Each writer has its own temporary file, so no write of either fails;
+;; a writer exits 0 when all its writes succeeded, 2 when some failed
+;; with a save-data error giving a real reason, 3 at the first other
+;; error (one whose reason is "Success", or not a save-data error).
 (test-group "save: two processes writing one name never mix"
   (let* ((value-of (lambda (who) (list who (make-string 30000 (if (eq? who 'a) #\a #\b)))))
          (before '(nobody yet))
          (writer (lambda (who)
                    (process-fork
                     (lambda ()
-                      ;; both start together, once this process says go
+                      ;; both start together: each says it is ready, then
+                      ;; waits for this process to say go
+                      (sv-put! (sprintf "ready-~a" who) "")
                       (let wait () (unless (file-exists? (sv-file "go")) (wait)))
-                      (let loop ((i 0))
+                      (let loop ((i 0) (failed 0))
                         (if (= i 60)
-                            (emergency-exit 0)
+                            (emergency-exit (if (= failed 0) 0 2))
                             (let ((outcome (handle-exceptions e
                                                (if (and (save-data-error? e)
                                                         (not (substring-index "Success" (error-text e))))
                                                    'clear-error
-                                                   (begin (print "bad error: " (error-text e)) 'bad))
+                                                   'bad)
                                              (save-data-write! sv-dir 'shared (value-of who))
                                              'ok)))
-                              (if (eq? outcome 'bad) (emergency-exit 3) (loop (+ i 1)))))))))))
+                              (if (eq? outcome 'bad)
+                                  (emergency-exit 3)
+                                  (loop (+ i 1) (if (eq? outcome 'ok) failed (+ failed 1))))))))))))
     (save-data-write! sv-dir 'shared before)
     (let* ((a (writer 'a)) (b (writer 'b))
            (reads 0) (wrong 0))
+      (let wait () (unless (and (file-exists? (sv-file "ready-a")) (file-exists? (sv-file "ready-b"))) (wait)))
       (sv-put! "go" "")
       (let loop ((running (list a b)) (codes '()))
         (if (null? running)
             (begin
-              (test "both writers ended without a bad error" '(0 0) codes)
+              (test-assert "no writer met an error without a real reason" (not (memv 3 codes)))
+              (test "every write of both writers succeeded" '(0 0) codes)
               (test "every read while they ran gave a whole value" 0 wrong)
               (test-assert "... and this process did read while they ran" (> reads 0)))
             (let ((v (save-data-read sv-dir 'shared 'unreadable)))
