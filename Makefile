@@ -13,7 +13,7 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util media-header keywords srfi-197 entity check camera tween animation particles xml decode json map tmj tmx tilemap scene broadphase physics overlap pipeline sdl2 mapdraw renderer input sound text assets prefabs objects game level repl save engine
+MODULES := test util media-header keywords srfi-197 entity check camera tween animation particles xml decode json map tmj tmx tilemap scene broadphase physics overlap pipeline sdl2 mapdraw renderer input sound text assets prefabs objects game level repl save-text save engine
 
 # C libraries a module binds through the FFI (passed to the linker by csc).
 LINK_xml    := -L -lexpat
@@ -83,7 +83,8 @@ $(BUILD)/downstroke.objects.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke
 $(BUILD)/downstroke.game.so:      $(BUILD)/downstroke.assets.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.level.so:     $(BUILD)/downstroke.game.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.tilemap.so $(BUILD)/downstroke.objects.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.repl.so:      
-$(BUILD)/downstroke.save.so:      
+$(BUILD)/downstroke.save-text.so: 
+$(BUILD)/downstroke.save.so:      $(BUILD)/downstroke.save-text.so
 $(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.game.so $(BUILD)/downstroke.level.so $(BUILD)/downstroke.pipeline.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.repl.so $(BUILD)/downstroke.camera.so $(BUILD)/downstroke.save.so
 $(BUILD)/downstroke.mapdraw.so:   $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.map.so
 $(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.particles.so $(BUILD)/downstroke.mapdraw.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.check.so
