@@ -177,44 +177,37 @@
   (let loop ((ps parts)) (or (null? ps) (and (substring-index (car ps) text) (loop (cdr ps))))))
 
 (test-group "finite values that overflow later: tweens"
-  (let* ((e (ex-ent #:type 'star #:x 0))
-         (t (make-tween e props: '((#:x . 10)) duration: 5e-324 repeat: -1)))
-    ;; 16 ms hold 2^1078 runs of 5e-324 (= 2^-1074) ms: 16 / 5e-324 is +inf.0
-    (receive (t2 e2) (tween-step t e 16)
-      (test "a run of 5e-324 ms repeating forever, stepped 16 ms: 2^1078 whole runs, x back at its start"
-            0 (entity-ref e2 #:x))
-      (test-assert "... and still running" (tween-active? t2))
-      (receive (t3 e3) (tween-step t2 e2 16)
-        (test "... and the next 16 ms too" '(0 #t) (list (entity-ref e3 #:x) (tween-active? t3))))))
-  (let* ((e (ex-ent #:type 'star #:x 0))
-         (t (make-tween e props: '((#:x . 10)) duration: 5e-324 repeat: -1 yoyo?: #t)))
-    ;; 2^52 + 1 runs: counted exactly, the last an odd (backward) one at its start
-    (receive (t2 e2) (tween-step t e (* (+ (expt 2 52) 1) 5e-324))
-      (test "with yoyo?, 2^52 + 1 runs of 5e-324 ms end on a backward run, at the target" 10
-            (entity-ref e2 #:x))))
-  (let ((e (ex-ent #:type 'star #:x 0)))
-    ;; 2^-1020 ms is 2^54 units of 5e-324: 6004799503160661 runs of 3 units, 1 unit left
-    (receive (t2 e2) (tween-step (make-tween e props: '((#:x . 10)) duration: (* 3 5e-324) repeat: -1)
-                                 e (expt 2. -1020))
-      (test "runs counted beyond 2^52 leave the exact remainder: a third of a run" (/ 10. 3)
-            (entity-ref e2 #:x))))
-  (let* ((e (ex-ent #:type 'star #:x -1e308))
-         (t (make-tween e props: '((#:x . 1e308)) duration: 100)))
-    (test "a tween of #:x from -1e308 to 1e308: halfway is 0, not +inf.0" 0.
-          (receive (t2 e2) (tween-step t e 50) (entity-ref e2 #:x)))
-    (test "a quarter of the way is -5e307" -5e307
-          (receive (t2 e2) (tween-step t e 25) (entity-ref e2 #:x)))
-    (test "the end is the target exactly" 1e308
-          (receive (t2 e2) (tween-step t e 100) (entity-ref e2 #:x))))
-  (test "exact ends still give exact values on the way" 5/2
-        (receive (t2 e2) (tween-step (make-tween (ex-ent #:x 0) props: '((#:x . 10)) duration: 100)
-                                     (ex-ent #:x 0) 25)
-          (entity-ref e2 #:x)))
-  (let* ((e (ex-ent #:type 'star #:id 7 #:x 0))
-         (t (make-tween e props: '((#:x . 1.5e308)) duration: 100 ease: (lambda (u) (* 2 u)))))
-    (test-assert "an easing that overshoots past the largest flonum is an error naming the entity and the key"
-                 (ex-says? (ex-message (lambda () (tween-step t e 75)))
-                           "entity star 7" "#:x" "1.5e+308" "not a finite number"))))
+  ;; (x active?) after stepping a tween of e's #:x by each dt of dts
+  (define (x-after e dts . options)
+    (let loop ((t (apply make-tween e options)) (e e) (dts dts))
+      (if (null? dts)
+          (list (entity-ref e #:x) (tween-active? t))
+          (receive (t e) (tween-step t e (car dts)) (loop t e (cdr dts))))))
+  (define star (ex-ent #:type 'star #:x 0))
+  ;; 16 ms hold 2^1078 runs of 5e-324 (= 2^-1074) ms: 16 / 5e-324 is +inf.0
+  (test "a run of 5e-324 ms repeating forever, stepped 16 ms twice: 2^1078 whole runs each, x back at its start, still running"
+        '(0 #t) (x-after star '(16 16) props: '((#:x . 10)) duration: 5e-324 repeat: -1))
+  (test "with yoyo?, 2^52 + 1 runs of 5e-324 ms (counted exactly) end on a backward run, at the target"
+        '(10 #t) (x-after star (list (* (+ (expt 2 52) 1) 5e-324)) props: '((#:x . 10)) duration: 5e-324
+                          repeat: -1 yoyo?: #t))
+  ;; 2^-1020 ms is 2^54 units of 5e-324: 6004799503160661 runs of 3 units, 1 unit left
+  (test "runs counted beyond 2^52 leave the exact remainder: a third of a run"
+        (list (/ 10. 3) #t) (x-after star (list (expt 2. -1020)) props: '((#:x . 10)) duration: (* 3 5e-324)
+                                     repeat: -1))
+  (let ((far (ex-ent #:type 'star #:x -1e308)))
+    (test "a tween of #:x from -1e308 to 1e308: halfway is 0, not +inf.0" '(0. #t)
+          (x-after far '(50) props: '((#:x . 1e308)) duration: 100))
+    (test "a quarter of the way is -5e307" '(-5e307 #t)
+          (x-after far '(25) props: '((#:x . 1e308)) duration: 100))
+    (test "the end is the target exactly" '(1e308 #f)
+          (x-after far '(100) props: '((#:x . 1e308)) duration: 100)))
+  (test "exact ends still give exact values on the way" '(5/2 #t)
+        (x-after star '(25) props: '((#:x . 10)) duration: 100))
+  (test-assert "an easing that overshoots past the largest flonum is an error naming the entity and the key"
+               (ex-says? (ex-message (lambda () (x-after (ex-ent #:type 'star #:id 7 #:x 0) '(75)
+                                                         props: '((#:x . 1.5e308)) duration: 100
+                                                         ease: (lambda (u) (* 2 u)))))
+                         "entity star 7" "#:x" "1.5e+308" "not a finite number")))
 
 (test-group "finite values that overflow later: the camera"
   (test "make-camera zoom: +inf.0 is refused, naming the keyword"
