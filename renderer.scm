@@ -45,7 +45,14 @@
 ;;; sizes are whole pixels already (tile sizes) or rounded the same way
 ;;; (an entity's rect covers floor(x - cx) to floor(x + w - cx)).
 ;;; So everything moves by whole pixels together and nothing jitters against
-;;; the map.
+;;; the map. Far-away numbers (mapdraw.scm's whole-pixel, sdl2.scm's
+;;; downstroke_rect and render-copy!): a pixel stays an exact integer
+;;; however large; an edge that overflowed to an infinity lies beyond every
+;;; view and a NaN nowhere; SDL is handed only what it holds, and a copy far
+;;; beyond the view is cut on whole texels, so a sprite of #:scale 1e308
+;;; (its box computed again in exact numbers) shows the texels the view sees.
+;;; An entity's #:x #:y #:width #:height that is not a finite number is an
+;;; error naming the entity and the key (entity.scm's check-entity-number).
 ;;;
 ;;; The layer camera. A layer with parallax factors (px, py) (Tiled's
 ;;; parallaxx / parallaxy, multiplied through groups) in a map whose
