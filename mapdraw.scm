@@ -77,13 +77,15 @@
   ;; a position lost to overflow (+inf.0 - +inf.0), stays NaN and nothing
   ;; is drawn there: every comparison with it is false, and sdl2.scm draws
   ;; no rect holding one.
-  (define (whole-pixel v)
+  (define-inline (whole-pixel v)
     (let ((f (floor v)))
-      (cond ((exact? f) f)
-            ((finite? f) (inexact->exact f))
-            ((nan? f) f)
-            ((> f 0) 2147483648)
-            (else -2147483648))))
+      (if (exact? f) f (flonum-pixel f))))
+
+  (define (flonum-pixel f)
+    (cond ((finite? f) (inexact->exact f))
+          ((nan? f) f)
+          ((> f 0) 2147483648)
+          (else -2147483648)))
 
   ;; The rounding rule: world coordinate -> whole screen pixel.
   (define (screen-coordinate x camera) (whole-pixel (- x camera)))

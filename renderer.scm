@@ -193,7 +193,7 @@
   ;; An entity's position or size as the renderer reads it: #f is the
   ;; default 0, a fixnum passes at no cost, anything else is checked as
   ;; physics checks it (an error naming the entity and the key).
-  (define (drawn-number e key v)
+  (define-inline (drawn-number e key v)
     (cond ((fixnum? v) v)
           ((not v) 0)
           (else (check-entity-number e key v))))

@@ -177,14 +177,21 @@ static void downstroke_letterbox(SDL_Renderer *r, int lw, int lh) {
    floats, which hold every integer below 2^24) and at most 2^29 / scale
    (SDL's software renderer multiplies by the renderer's scale in ints),
    both far outside any window. */
+/* floor(v) for v well inside the int range (most rects are whole already) */
+static int ds_floor(double v) {
+  int i = (int)v;
+  return (double)i > v ? i - 1 : i;
+}
+
 static int ds_span(double p, double size, double limit, int *lo, int *len) {
   double a = p, b = p + size;
+  int ia, ib;
   if (!(a < b)) return 0;
   if (a < -limit) a = -limit;
   if (b > limit) b = limit;
-  a = SDL_floor(a); b = SDL_floor(b);
-  if (!(a < b)) return 0;
-  *lo = (int)a; *len = (int)(b - a);
+  ia = ds_floor(a); ib = ds_floor(b);
+  if (ia >= ib) return 0;
+  *lo = ia; *len = ib - ia;
   return 1;
 }
 
@@ -239,9 +246,24 @@ static int downstroke_copy(SDL_Renderer *r, SDL_Texture *t, int use_src,
   SDL_RenderGetViewport(r, &vp);
   if (!(ax >= -DS_REACH && bx <= vp.w + DS_REACH && ay >= -DS_REACH && by <= vp.h + DS_REACH))
     return angle == 0.0 ? 2 : 0;
-  dst.x = (int)SDL_floor(ax); dst.y = (int)SDL_floor(ay);
-  dst.w = (int)SDL_floor(bx) - dst.x; dst.h = (int)SDL_floor(by) - dst.y;
+  dst.x = ds_floor(ax); dst.y = ds_floor(ay);
+  dst.w = ds_floor(bx) - dst.x; dst.h = ds_floor(by) - dst.y;
   if (dst.w <= 0 || dst.h <= 0) return 0;
+  return ds_copy_rect(r, t, use_src ? &src : NULL, &dst, angle, flip);
+}
+
+/* The usual rect and copy, whose numbers render-fill-rect!, render-draw-rect!
+   and render-copy! found to be small fixnums near the view: as they are. */
+static int downstroke_rect_ints(SDL_Renderer *r, int which, int x, int y, int w, int h) {
+  SDL_Rect rc = { x, y, w, h };
+  return which ? SDL_RenderDrawRect(r, &rc) : SDL_RenderFillRect(r, &rc);
+}
+
+static int downstroke_copy_ints(SDL_Renderer *r, SDL_Texture *t, int use_src,
+                                int sx, int sy, int sw, int sh, int dx, int dy, int dw, int dh,
+                                double angle, int hflip, int vflip) {
+  SDL_Rect src = { sx, sy, sw, sh }, dst = { dx, dy, dw, dh };
+  int flip = (hflip ? SDL_FLIP_HORIZONTAL : 0) | (vflip ? SDL_FLIP_VERTICAL : 0);
   return ds_copy_rect(r, t, use_src ? &src : NULL, &dst, angle, flip);
 }
 
@@ -715,17 +737,30 @@ EOF
 
   ;; A rect's numbers as the C doubles downstroke_rect and downstroke_copy
   ;; turn into SDL's ints (above): any real, bignums and fractions included.
-  (define (c-real v) (if (or (fixnum? v) (flonum? v)) v (exact->inexact v)))
+  (define-inline (c-real v) (if (or (fixnum? v) (flonum? v)) v (exact->inexact v)))
 
   (define rect-op
     (foreign-lambda int "downstroke_rect" c-pointer int bool double double double double))
+  (define rect-op-ints
+    (foreign-lambda int "downstroke_rect_ints" c-pointer int int int int int))
+
+  ;; Fixnum edges within +-near-limit: passed on as they are (a map's
+  ;; tiles, sprites and boxes near the view, hundreds a frame, cost what
+  ;; they cost before any of this); the rest go through the cuts above.
+  ;; The same number as DS_REACH.
+  (define near-limit 16384)
+
+  (define-inline (near-span? p size)
+    (and (fixnum? p) (fixnum? size) (fx>= p (fxneg near-limit)) (fx> size 0) (fx<= size near-limit)
+         (fx<= (fx+ p size) near-limit)))
 
   (define (do-rect who call which r rect)
     (check-status who call
                   (if rect
-                      (rect-op (live-renderer who r) which #f
-                               (c-real (rect-x rect)) (c-real (rect-y rect))
-                               (c-real (rect-w rect)) (c-real (rect-h rect)))
+                      (let ((x (rect-x rect)) (y (rect-y rect)) (w (rect-w rect)) (h (rect-h rect)))
+                        (if (and (near-span? x w) (near-span? y h))
+                            (rect-op-ints (live-renderer who r) which x y w h)
+                            (rect-op (live-renderer who r) which #f (c-real x) (c-real y) (c-real w) (c-real h))))
                       (rect-op (live-renderer who r) which #t 0. 0. 0. 0.))))
 
   ;; rect: a rect, or #f for the whole target.
@@ -735,6 +770,9 @@ EOF
   (define sdl-copy
     (foreign-lambda int "downstroke_copy" c-pointer c-pointer bool double double double double
                     bool double double double double double bool bool))
+  (define sdl-copy-ints
+    (foreign-lambda int "downstroke_copy_ints" c-pointer c-pointer bool int int int int
+                    int int int int double bool bool))
 
   ;; (render-copy! renderer texture src dst #!key flip angle): src and dst
   ;; are rects or #f (the whole texture / target); flip is a list of the
@@ -749,27 +787,42 @@ EOF
         (error 'render-copy! "the texture belongs to another renderer" t))
       (unless (and (real? angle) (or (exact? angle) (finite? angle)))
         (error 'render-copy! "angle: must be a finite number of degrees" angle))
-      ;; src? #f: the whole texture; dst? #f: the whole target
-      (define (copy! src? sx sy sw sh dst? dx dy dw dh)
-        (sdl-copy rp tp src? (c-real sx) (c-real sy) (c-real sw) (c-real sh)
-                  dst? (c-real dx) (c-real dy) (c-real dw) (c-real dh)
-                  (exact->inexact angle) h? v?))
-      (define (done! status)
-        (check-status 'render-copy! (if (and (null? flip) (zero? angle)) "SDL_RenderCopy" "SDL_RenderCopyEx")
-                      status))
-      (define (source-copy! dst? dx dy dw dh)
-        (if src
-            (copy! #t (rect-x src) (rect-y src) (rect-w src) (rect-h src) dst? dx dy dw dh)
-            (copy! #f 0 0 0 0 dst? dx dy dw dh)))
-      (cond ((not dst) (done! (source-copy! #f 0 0 0 0)))
-            ((not (and (fixnum? (rect-x dst)) (fixnum? (rect-y dst))
-                       (fixnum? (rect-w dst)) (fixnum? (rect-h dst))))
-             (copy-far! r t src dst done! copy! h? v? angle))
-            (else
-             (let ((status (source-copy! #t (rect-x dst) (rect-y dst) (rect-w dst) (rect-h dst))))
-               (if (= status 2)
-                   (copy-far! r t src dst done! copy! h? v? angle)
-                   (done! status)))))))
+      (let ((call (if (and (null? flip) (zero? angle)) "SDL_RenderCopy" "SDL_RenderCopyEx"))
+            (degrees (exact->inexact angle)))
+        (if dst
+            (let ((dx (rect-x dst)) (dy (rect-y dst)) (dw (rect-w dst)) (dh (rect-h dst)))
+              (if (and (near-span? dx dw) (near-span? dy dh))
+                  (if src
+                      (let ((sx (rect-x src)) (sy (rect-y src)) (sw (rect-w src)) (sh (rect-h src)))
+                        (if (and (near-span? sx sw) (near-span? sy sh))
+                            ;; the usual copy
+                            (check-status 'render-copy! call
+                                          (sdl-copy-ints rp tp #t sx sy sw sh dx dy dw dh degrees h? v?))
+                            (copy-beyond! r t rp tp src dst h? v? angle call degrees)))
+                      (check-status 'render-copy! call
+                                    (sdl-copy-ints rp tp #f 0 0 0 0 dx dy dw dh degrees h? v?)))
+                  (copy-beyond! r t rp tp src dst h? v? angle call degrees)))
+            (check-status 'render-copy! call
+                          (if src
+                              (sdl-copy rp tp #t (c-real (rect-x src)) (c-real (rect-y src))
+                                        (c-real (rect-w src)) (c-real (rect-h src))
+                                        #f 0 0 0 0 degrees h? v?)
+                              (sdl-copy rp tp #f 0 0 0 0 #f 0 0 0 0 degrees h? v?)))))))
+
+  ;; A copy whose numbers are not all small fixnums: downstroke_copy takes
+  ;; it as doubles when they are fixnums and draws it when it is near the
+  ;; view; anything else is cut by copy-far!.
+  (define (copy-beyond! r t rp tp src dst h? v? angle call degrees)
+    (let ((status (if (and (fixnum? (rect-x dst)) (fixnum? (rect-y dst))
+                           (fixnum? (rect-w dst)) (fixnum? (rect-h dst)))
+                      (sdl-copy rp tp (and src #t)
+                                (if src (c-real (rect-x src)) 0) (if src (c-real (rect-y src)) 0)
+                                (if src (c-real (rect-w src)) 0) (if src (c-real (rect-h src)) 0)
+                                #t (rect-x dst) (rect-y dst) (rect-w dst) (rect-h dst) degrees h? v?)
+                      2)))
+      (if (eqv? status 2)
+          (copy-far! r t rp tp src dst h? v? angle call)
+          (check-status 'render-copy! call status))))
 
   (define (whole-texture t) (receive (w h) (texture-size t) (make-rect 0 0 w h)))
 
@@ -815,7 +868,7 @@ EOF
                               (cons (list (car p) (cadr p) (max (caddr p) v0) (min (cadddr p) v1))
                                     out))))))))))
 
-  (define (copy-far! r t src dst done! copy! h? v? angle)
+  (define (copy-far! r t rp tp src dst h? v? angle call)
     (let ((x (exact-coordinate (rect-x dst))) (y (exact-coordinate (rect-y dst)))
           (w (exact-coordinate (rect-w dst))) (h (exact-coordinate (rect-h dst)))
           (s (or src (whole-texture t))))
@@ -830,8 +883,10 @@ EOF
                   (let ((x0 (floor (caddr px))) (x1 (floor (cadddr px)))
                         (y0 (floor (caddr py))) (y1 (floor (cadddr py))))
                     (when (and (< x0 x1) (< y0 y1))
-                      (done! (copy! #t (car px) (car py) (- (cadr px) (car px)) (- (cadr py) (car py))
-                                    #t x0 y0 (- x1 x0) (- y1 y0))))))
+                      (check-status 'render-copy! call
+                                    (sdl-copy rp tp #t (car px) (car py)
+                                              (- (cadr px) (car px)) (- (cadr py) (car py))
+                                              #t x0 y0 (- x1 x0) (- y1 y0) 0. h? v?)))))
                 ys))
              xs))))))
 
