@@ -694,9 +694,12 @@ EOF
          p (location sx) (location sy))
         (values sx sy))))
 
+  ;; SDL's scale is a C float: from about 1e-38 to 3.4e38.
+  (define (float-scale? v) (and (real? v) (finite? v) (<= 1e-38 v 3e38)))
+
   (define (render-scale-set! r sx sy)
-    (unless (and (real? sx) (real? sy) (positive? sx) (positive? sy) (finite? sx) (finite? sy))
-      (error 'render-scale-set! "the scale must be two positive finite numbers" sx sy))
+    (unless (and (float-scale? sx) (float-scale? sy))
+      (error 'render-scale-set! "the scale must be two positive finite numbers a float holds" sx sy))
     (check-status 'render-scale-set! "SDL_RenderSetScale"
                   ((foreign-lambda int "SDL_RenderSetScale" c-pointer float float)
                    (live-renderer 'render-scale-set! r) (exact->inexact sx) (exact->inexact sy))))

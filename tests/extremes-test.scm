@@ -258,6 +258,15 @@
                       (ex-says? (ex-message (lambda () (load-tilemap path)))
                                 path "layer \"ground\"" attr "not a finite number"))))
      '("offsetx" "offsety" "parallaxx" "parallaxy"))
+    (let ((path (make-pathname dir "far.tmj")))
+      (with-output-to-file path
+        (lambda ()
+          (print "{\"type\":\"map\",\"version\":\"1.10\",\"orientation\":\"orthogonal\",\"renderorder\":\"right-down\",\"width\":2,\"height\":1,\"tilewidth\":8,\"tileheight\":8,\"infinite\":false,\"tilesets\":[],")
+          (print " \"layers\":[{\"type\":\"group\",\"id\":1,\"name\":\"far\",\"parallaxx\":1e308,\"visible\":true,\"opacity\":1,\"x\":0,\"y\":0,")
+          (print "  \"layers\":[{\"type\":\"tilelayer\",\"id\":2,\"name\":\"ground\",\"width\":2,\"height\":1,\"parallaxx\":1e308,\"data\":[0,0],\"visible\":true,\"opacity\":1,\"x\":0,\"y\":0}]}]}")))
+      (test-assert "the same in a JSON map: refused at load, naming the file, the layer and parallaxx"
+                   (ex-says? (ex-message (lambda () (load-tilemap path)))
+                             path "layer \"ground\"" "parallaxx" "not a finite number")))
     (test "one of the two alone loads, its value kept" 1e308
           (layer-offset-x (car (tilemap-layers (load-tilemap (write-map "one.tmx" "offsetx=\"1e308\"" ""))))))
     (delete-directory dir #t))

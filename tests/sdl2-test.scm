@@ -93,6 +93,7 @@
       (render-copy! r t #f (make-rect (- 4 (expt 2 40)) 0 (expt 2 41) 6) angle: 90)
       (test "a turned copy that far is not drawn" (list black black black black) (row))
       (test-error "an angle that is not finite is an error" (render-copy! r t #f (make-rect 0 0 2 2) angle: +nan.0))
+      (test-error "a scale a C float cannot hold (1e300, +inf.0 as a float) is an error" (render-scale-set! r 1e300 1))
       ;; last: reading pixels at this scale leaves the renderer's viewport empty
       (clear!)
       (render-scale-set! r 100 100)
