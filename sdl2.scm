@@ -754,8 +754,8 @@ EOF
   (define near-limit 16384)
 
   (define-inline (near-span? p size)
-    (and (fixnum? p) (fixnum? size) (fx>= p (fxneg near-limit)) (fx> size 0) (fx<= size near-limit)
-         (fx<= (fx+ p size) near-limit)))
+    (and (fixnum? p) (fixnum? size) (fx>= p (fxneg near-limit)) (fx<= p near-limit)
+         (fx> size 0) (fx<= size near-limit) (fx<= (fx+ p size) near-limit)))
 
   (define (do-rect who call which r rect)
     (check-status who call

@@ -1,7 +1,7 @@
 ;;; (downstroke sdl2): real SDL on the dummy video driver, drawing into a
 ;;; software renderer on a surface and reading the pixels back.
 
-(import scheme (chicken base) (chicken file) (chicken string) (chicken gc)
+(import scheme (chicken base) (chicken file) (chicken string) (chicken gc) (chicken fixnum)
         srfi-4 (downstroke test) (downstroke sdl2))
 (include-relative "pixels.scm")
 
@@ -61,6 +61,10 @@
       (render-fill-rect! r (make-rect +nan.0 0 4 4))
       (render-fill-rect! r (make-rect -inf.0 0 +inf.0 6))
       (test "a rect holding a NaN, or from -inf.0 over +inf.0 (no extent), draws nothing" (list black black black black)
+            (row))
+      (render-fill-rect! r (make-rect most-positive-fixnum 0 10 6))
+      (render-fill-rect! r (make-rect 0 most-positive-fixnum 10 6))
+      (test "a rect at the largest fixnum is far off, not wrapped onto the view" (list black black black black)
             (row))
       (render-fill-rect! r (make-rect 3 0 +inf.0 6))
       (test "a rect from 3 over +inf.0 covers the row from 3" (list black red red red) (row))
