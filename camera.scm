@@ -12,8 +12,11 @@
 ;;;                (x y w h) inside that rectangle, #f anywhere. A region
 ;;;                smaller than the view pins the camera to its left or top.
 ;;;   zoom:        world pixels are drawn zoom times larger (2 shows a
-;;;                quarter of the world); the view in world pixels is the
-;;;                screen's view divided by the zoom.
+;;;                quarter of the world), from 1/64 to 64; the view in
+;;;                world pixels is the screen's view divided by the zoom.
+;;; Every number given is finite (checked here, naming the keyword), and a
+;;; target whose numbers would carry the view past the largest flonum is
+;;; an error naming it.
 ;;; camera-shake starts a shake of a given amplitude (px) that decays by a
 ;;; factor each frame. The camera keeps its exact position (to 1/16 px, so
 ;;; that gliding exact numbers do not grow without end) and draws from a
