@@ -13,7 +13,7 @@ CSC_FLAGS ?= -O3 -d1
 BUILD     := build
 
 # Order matters only for reading; make follows the dependency lines below.
-MODULES := test util media-header keywords srfi-197 entity check camera tween animation particles xml decode json map tmj tmx tilemap scene broadphase physics overlap pipeline sdl2 mapdraw renderer input sound text assets prefabs objects game level repl save-text save engine
+MODULES := test util media-header keywords numbers srfi-197 entity check camera tween animation particles xml decode json map tmj tmx tilemap scene broadphase physics overlap pipeline sdl2 mapdraw renderer input sound text assets prefabs objects game level repl save-text save engine
 
 # C libraries a module binds through the FFI (passed to the linker by csc).
 LINK_xml    := -L -lexpat
@@ -62,10 +62,10 @@ $(BUILD)/downstroke.%.so: %.scm | $(BUILD)
 $(BUILD)/downstroke.sound.so: $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.media-header.so
 $(BUILD)/downstroke.sdl2.so: $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.media-header.so
 $(BUILD)/downstroke.decode.so: $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.tween.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.numbers.so
 $(BUILD)/downstroke.animation.so: $(BUILD)/downstroke.entity.so
-$(BUILD)/downstroke.particles.so: $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so
-$(BUILD)/downstroke.map.so:       $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so
+$(BUILD)/downstroke.particles.so: $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.numbers.so
+$(BUILD)/downstroke.map.so:       $(BUILD)/downstroke.util.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.numbers.so
 $(BUILD)/downstroke.tmj.so:       $(BUILD)/downstroke.json.so $(BUILD)/downstroke.util.so
 $(BUILD)/downstroke.tmx.so:       $(BUILD)/downstroke.media-header.so $(BUILD)/downstroke.xml.so $(BUILD)/downstroke.decode.so $(BUILD)/downstroke.util.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.tmj.so
 $(BUILD)/downstroke.tilemap.so:   $(BUILD)/downstroke.map.so $(BUILD)/downstroke.tmx.so $(BUILD)/downstroke.objects.so
@@ -73,7 +73,7 @@ $(BUILD)/downstroke.scene.so:     $(BUILD)/downstroke.entity.so $(BUILD)/downstr
 $(BUILD)/downstroke.physics.so:   $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.overlap.so:   $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.broadphase.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.check.so:     $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.particles.so
-$(BUILD)/downstroke.camera.so:    $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so
+$(BUILD)/downstroke.camera.so:    $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.numbers.so
 $(BUILD)/downstroke.pipeline.so:  $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.tween.so $(BUILD)/downstroke.animation.so $(BUILD)/downstroke.particles.so $(BUILD)/downstroke.srfi-197.so
 $(BUILD)/downstroke.input.so:     $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
 $(BUILD)/downstroke.text.so:      $(BUILD)/downstroke.media-header.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.keywords.so
@@ -87,7 +87,7 @@ $(BUILD)/downstroke.save-text.so:
 $(BUILD)/downstroke.save.so:      $(BUILD)/downstroke.save-text.so
 $(BUILD)/downstroke.engine.so:    $(BUILD)/downstroke.game.so $(BUILD)/downstroke.level.so $(BUILD)/downstroke.pipeline.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.renderer.so $(BUILD)/downstroke.input.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.repl.so $(BUILD)/downstroke.camera.so $(BUILD)/downstroke.save.so
 $(BUILD)/downstroke.mapdraw.so:   $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.map.so
-$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.particles.so $(BUILD)/downstroke.mapdraw.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.check.so
+$(BUILD)/downstroke.renderer.so:  $(BUILD)/downstroke.particles.so $(BUILD)/downstroke.mapdraw.so $(BUILD)/downstroke.physics.so $(BUILD)/downstroke.sdl2.so $(BUILD)/downstroke.entity.so $(BUILD)/downstroke.scene.so $(BUILD)/downstroke.map.so $(BUILD)/downstroke.keywords.so $(BUILD)/downstroke.check.so $(BUILD)/downstroke.numbers.so
 
 # C files a module includes (its foreign-declare), found through -I.
 $(BUILD)/downstroke.pipeline.so: needs.c
