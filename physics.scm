@@ -424,20 +424,40 @@
           (nearest-solid-line grid (if (> toward 0) l1 l0) (if (> toward 0) l0 l1) (- toward)
                               (span-first across tile-across) (span-last across across-size tile-across))))
       (define (free? x y) (not (blocking rows y h x w th tw 1)))
-      ;; how far the box goes along one axis toward `toward` (-1 or +1)
-      (define (straight grid pos size across across-size tile tile-across toward)
-        (let loop ((p pos))
-          (let ((line (blocking grid p size across across-size tile tile-across (- toward))))
-            (if line
-                (loop (if (> toward 0) (* (+ line 1) tile) (- (* line tile) size)))
-                (- p pos)))))
+      ;; The four straight moves, up, down, left and right: each moves the
+      ;; box past the nearest solid line on that side until it is free,
+      ;; each step farther. They are run as a race, always stepping the
+      ;; one that has gone least far (of equals, the first), so that the
+      ;; one that ends nearest is found without running the others to
+      ;; their ends: the shortest, of equals the first in that order.
+      (define (shortest-straight)
+        (let ((at (vector y y x x)) (done (make-vector 4 #f)))
+          ;; the squared distance runner i has gone (read from `at`: a
+          ;; vector made of literal numbers would be typed as holding
+          ;; fixnums by CHICKEN's optimizer, whatever is stored in it later)
+          (define (gone i) (square (- (vector-ref at i) (if (fx< i 2) y x))))
+          (let race ()
+            (let* ((i (let pick ((i 1) (best 0) (far (gone 0)))
+                        (if (fx= i 4) best
+                            (let ((d (gone i)))
+                              (if (< d far) (pick (fx+ i 1) i d) (pick (fx+ i 1) best far))))))
+                   (p (vector-ref at i)))
+              (if (vector-ref done i)
+                  (if (fx< i 2) (cons 0 (- p y)) (cons (- p x) 0))
+                  (let ((line (case i
+                                ((0 1) (blocking rows p h x w th tw (if (fx= i 0) 1 -1)))
+                                (else (blocking cols p w y h tw th (if (fx= i 2) 1 -1))))))
+                    (if line
+                        (vector-set! at i (case i
+                                            ((0) (- (* line th) h))
+                                            ((1) (* (+ line 1) th))
+                                            ((2) (- (* line tw) w))
+                                            (else (* (+ line 1) tw))))
+                        (vector-set! done i #t))
+                    (race)))))))
       (if (free? x y)
           (values 0 0)
-          (let* ((moves (list (cons 0 (straight rows y h x w th tw -1))
-                              (cons 0 (straight rows y h x w th tw 1))
-                              (cons (straight cols x w y h tw th -1) 0)
-                              (cons (straight cols x w y h tw th 1) 0)))
-                 (best (foldl (lambda (b m) (if (< (norm2 m) (norm2 b)) m b)) (car moves) (cdr moves)))
+          (let* ((best (shortest-straight))
                  (best (nearest-free-pair tm x y w h best (sqrt-ceiling (norm2 best)))))
             (values (car best) (cdr best))))))
 
