@@ -302,7 +302,7 @@
 
 ;; What a frame costs grows with the candidates, not with their pairs,
 ;; nor with the body's size: eight bodies deep inside a 2000 x 2000
-;; block of solid tiles (trying every pair took about 15 s a body), and
+;; block of solid tiles (trying every pair took over 15 s a body), and
 ;; a body 10^12 px wide across a 3 x 3 map (the candidates along its
 ;; width alone took hours), one swept frame each, under a limit of 20 s
 ;; of CPU time. The block is the map, so the only way out is past one of

@@ -181,7 +181,7 @@
 
 ;; Replaying costs one step along the script in all: a script of 60,000
 ;; entries over 120,000 frames, within a limit of 20 s of CPU time
-;; (looking each frame up from the start took minutes).
+;; (looking each frame up from the start took about four minutes).
 (test-group "input: the cost of a long replay"
   (define e 60000)
   (define results

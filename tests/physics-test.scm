@@ -345,7 +345,7 @@
                 (if (equal? old es) moved (+ moved 1)))))))
 
 ;; A frame's groups cost one pass: 100,000 two-entity groups in a limit of
-;; 20 s of CPU time (assoc for each took over a minute).
+;; 20 s of CPU time (assoc for each took about two minutes).
 (test-group "2.1.10 sync-groups: the cost of many groups"
   (define n 100000)
   (define results
