@@ -12,8 +12,11 @@
 ;;;                (x y w h) inside that rectangle, #f anywhere. A region
 ;;;                smaller than the view pins the camera to its left or top.
 ;;;   zoom:        world pixels are drawn zoom times larger (2 shows a
-;;;                quarter of the world); the view in world pixels is the
-;;;                screen's view divided by the zoom.
+;;;                quarter of the world), from 1/64 to 64; the view in
+;;;                world pixels is the screen's view divided by the zoom.
+;;; Every number given is finite (checked here, naming the keyword), and a
+;;; target whose numbers would carry the view past the largest flonum is
+;;; an error naming it.
 ;;; camera-shake starts a shake of a given amplitude (px) that decays by a
 ;;; factor each frame. The camera keeps its exact position (to 1/16 px, so
 ;;; that gliding exact numbers do not grow without end) and draws from a
@@ -26,7 +29,8 @@
    camera-bounds camera-zoom camera-shake camera-shaking? camera-follow)
 
   (import scheme (chicken base) (chicken format) (chicken fixnum)
-          (downstroke keywords) (downstroke entity) (downstroke map))
+          (downstroke keywords) (downstroke entity) (downstroke map)
+          (only (downstroke numbers) finite-real? check-finite lerp))
 
   (define-record-type camera
     (%make-camera x y exact-x exact-y deadzone rate bounds zoom shake decay seed)
@@ -37,27 +41,40 @@
     (bounds camera-bounds) (zoom camera-zoom)
     (shake camera-shake-amplitude) (decay camera-shake-decay) (seed camera-seed))
 
+  ;; Every number a camera is given is finite (an infinity or a NaN would
+  ;; only fail later, in a frame); errors name the procedure and keyword.
   (define (check-positive who key v)
-    (unless (and (real? v) (positive? v) (not (nan? v)))
-      (error (sprintf "~a: ~a ~s must be a positive number" who key v))))
+    (unless (and (finite-real? v) (positive? v))
+      (error (sprintf "~a: ~a ~s must be a positive finite number" who key v))))
 
-  (define (check-settings who deadzone rate bounds zoom)
+  (define (all-finite? l) (or (null? l) (and (finite-real? (car l)) (all-finite? (cdr l)))))
+
+  ;; The zoom's range, that of make-game's scale: SDL's scale is a float
+  ;; (a zoom of 1e300 is +inf.0 there), and a view zoomed out 1e-300
+  ;; times would hold more tiles and image repeats than any frame draws.
+  (define zoom-min 1/64)
+  (define zoom-max 64)
+
+  (define (check-settings who x y deadzone rate bounds zoom)
+    (check-finite who "x:" x)
+    (check-finite who "y:" y)
     (unless (or (not deadzone)
-                (and (pair? deadzone) (real? (car deadzone)) (real? (cdr deadzone))
+                (and (pair? deadzone) (finite-real? (car deadzone)) (finite-real? (cdr deadzone))
                      (>= (car deadzone) 0) (>= (cdr deadzone) 0)))
-      (error (sprintf "~a: deadzone: ~s must be #f or (width . height), both >= 0" who deadzone)))
+      (error (sprintf "~a: deadzone: ~s must be #f or (width . height), both finite and >= 0" who deadzone)))
     (unless (and (real? rate) (> rate 0) (<= rate 1))
       (error (sprintf "~a: follow-rate: ~s must be a number above 0 and at most 1" who rate)))
     (unless (or (not bounds) (eq? bounds 'map)
-                (and (list? bounds) (= (length bounds) 4)
-                     (let loop ((b bounds)) (or (null? b) (and (real? (car b)) (loop (cdr b)))))
+                (and (list? bounds) (= (length bounds) 4) (all-finite? bounds)
                      (>= (caddr bounds) 0) (>= (cadddr bounds) 0)))
-      (error (sprintf "~a: bounds: ~s must be 'map, #f or (x y width height)" who bounds)))
-    (check-positive who "zoom:" zoom))
+      (error (sprintf "~a: bounds: ~s must be 'map, #f or (x y width height) of finite numbers" who bounds)))
+    (check-positive who "zoom:" zoom)
+    (unless (<= zoom-min zoom zoom-max)
+      (error (sprintf "~a: zoom: ~s must be from ~a to ~a" who zoom zoom-min zoom-max))))
 
   (define/keywords (make-camera #!key (x 0) (y 0) (deadzone #f) (follow-rate 1) (bounds 'map)
                                 (zoom 1))
-    (check-settings 'make-camera deadzone follow-rate bounds zoom)
+    (check-settings 'make-camera x y deadzone follow-rate bounds zoom)
     (%make-camera x y x y deadzone follow-rate bounds zoom 0 0 1))
 
   (define (with-position c x y ex ey shake seed)
@@ -67,6 +84,7 @@
   ;; A shake of `amplitude` px (the larger of it and the one going on),
   ;; shrinking by `decay` each frame until it is under half a pixel.
   (define/keywords (camera-shake c amplitude #!key (decay 9/10))
+    (unless (camera? c) (error (sprintf "camera-shake: ~s is not a camera" c)))
     (check-positive 'camera-shake "amplitude" amplitude)
     (unless (and (real? decay) (>= decay 0) (< decay 1))
       (error (sprintf "camera-shake: decay: ~s must be at least 0 and below 1" decay)))
@@ -111,10 +129,10 @@
            (zoom (camera-zoom c))
            (vw (/ view-w zoom)) (vh (/ view-h zoom))
            (cx (if target
-                   (+ (entity-ref target #:x 0) (/ (entity-ref target #:width 0) 2))
+                   (+ (entity-number target #:x) (/ (entity-number target #:width) 2))
                    (+ (camera-exact-x c) (/ vw 2))))
            (cy (if target
-                   (+ (entity-ref target #:y 0) (/ (entity-ref target #:height 0) 2))
+                   (+ (entity-number target #:y) (/ (entity-number target #:height) 2))
                    (+ (camera-exact-y c) (/ vh 2))))
            (dead (and target (camera-deadzone c)))
            (rate (camera-follow-rate c))
@@ -131,18 +149,25 @@
                          (else #f)))
            (axis (lambda (centre pos view dead lo extent)
                    (let* ((g (clamp (goal centre pos view dead) view lo extent))
-                          (next (if (= rate 1) g (sixteenth (+ pos (* rate (- g pos)))))))
+                          (next (if (= rate 1) g (sixteenth (lerp pos g rate)))))
                      ;; within half a pixel of a goal it will not reach: there
                      (if (< (abs (- g next)) 1/2) g next))))
-           (ex (axis cx (camera-exact-x c) vw (and dead (car dead))
-                     (if region (car region) 0) (and region (caddr region))))
-           (ey (axis cy (camera-exact-y c) vh (and dead (cdr dead))
-                     (if region (cadr region) 0) (and region (cadddr region))))
+           ;; a target near the largest flonum can put the view past it
+           (settled (lambda (axis v)
+                      (if (finite-real? v)
+                          v
+                          (error (sprintf "camera-follow: following ~a, the camera's ~a would be ~s"
+                                          (if target (sprintf "entity ~a" (entity-label target)) "no target")
+                                          axis v)))))
+           (ex (settled "x" (axis cx (camera-exact-x c) vw (and dead (car dead))
+                                  (if region (car region) 0) (and region (caddr region)))))
+           (ey (settled "y" (axis cy (camera-exact-y c) vh (and dead (cdr dead))
+                                  (if region (cadr region) 0) (and region (cadddr region)))))
            (amplitude (camera-shake-amplitude c)))
       (if (and (= rate 1) (zero? amplitude))
           (with-position c ex ey ex ey 0 (camera-seed c))
           (let* ((s1 (next-seed (camera-seed c))) (s2 (next-seed s1))
                  (ox (* amplitude (unit s1))) (oy (* amplitude (unit s2)))
                  (left (* amplitude (camera-shake-decay c))))
-            (with-position c (whole (+ ex ox)) (whole (+ ey oy)) ex ey
+            (with-position c (whole (settled "x" (+ ex ox))) (whole (settled "y" (+ ey oy))) ex ey
                            (if (< left 1/2) 0 left) s2))))))

@@ -101,7 +101,7 @@
    tileset-tile-ids gid-mask check-integer)
 
 
-  (import (downstroke keywords))
+  (import (downstroke keywords) (only (downstroke numbers) check-finite))
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
           (chicken string) (chicken file) (only (chicken file posix) regular-file?) srfi-4
@@ -169,6 +169,13 @@
     (unless (and (u32vector? data) (= (u32vector-length data) (* width height)))
       (error 'make-layer
              (sprintf "layer ~s: data must be a u32vector of ~a cells" name (* width height))))
+    ;; numbers a frame would otherwise meet first
+    (let ((where (sprintf "make-layer: layer ~s" name)))
+      (check-finite where "opacity:" opacity)
+      (check-finite where "offset-x:" offset-x)
+      (check-finite where "offset-y:" offset-y)
+      (check-finite where "parallax-x:" parallax-x)
+      (check-finite where "parallax-y:" parallax-y))
     (%make-layer 'tile id name class width height data visible? opacity tint
                  offset-x offset-y parallax-x parallax-y locked? properties
                  '() #f #f #f #f #f '()))

@@ -42,7 +42,7 @@
    particle? particle-x particle-y particle-vx particle-vy particle-age particle-life
    particle-color emitter-for-each step-particles random-next)
 
-  (import (downstroke keywords))
+  (import (downstroke keywords) (only (downstroke numbers) finite-real? lerp))
   (import scheme (chicken base) (chicken format) (chicken flonum) (chicken fixnum) srfi-4
           (downstroke entity))
 
@@ -114,8 +114,6 @@
 
   (define (bad key v what) (error 'make-emitter (sprintf "~a is ~s, ~a" key v what)))
 
-  (define (finite-real? v) (and (real? v) (or (exact? v) (finite? v))))
-
   ;; A range: a number, or (low high) with low <= high -> (low . high).
   (define (range key v integer?)
     (let ((ok? (lambda (x) (and (finite-real? x) (or (not integer?) (exact-integer? x))))))
@@ -172,9 +170,10 @@
   (define (random-next s) (modulo (* s 16807) modulus))
 
   ;; A value of the range (lo . hi) from the state s: (values v s').
-  ;; Integers (lifetimes) uniformly from lo to hi; other numbers lo plus
-  ;; (hi - lo) times a flonum of [0, 1]. A range of one value draws
-  ;; nothing, so a fixed speed or angle stays exact.
+  ;; Integers (lifetimes) uniformly from lo to hi; other numbers the
+  ;; point a flonum of [0, 1] of the way from lo to hi (lerp: a range
+  ;; from -1e308 to 1e308 is wider than any flonum, not its points). A
+  ;; range of one value draws nothing, so a fixed speed or angle stays exact.
   (define (draw-int r s)
     (if (= (car r) (cdr r))
         (values (car r) s)
@@ -185,7 +184,7 @@
     (if (= (car r) (cdr r))
         (values (car r) s)
         (let ((s (random-next s)))
-          (values (+ (car r) (* (- (cdr r) (car r)) (/ (- s 1) (- modulus 2.)))) s))))
+          (values (lerp (car r) (cdr r) (/ (- s 1) (- modulus 2.))) s))))
 
   ;; Sine and cosine of degrees, exact at the multiples of 90, so that a
   ;; straight-down fountain has vx exactly 0.

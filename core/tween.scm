@@ -53,7 +53,7 @@
   (make-tween tween? tween-step tween-finished? tween-active?
    step-tweens *ease-table* ease-procedure)
 
-  (import (downstroke keywords))
+  (import (downstroke keywords) (only (downstroke numbers) finite-real? lerp))
   (import scheme (chicken base) (chicken format) (chicken keyword)
           (downstroke entity))
 
@@ -174,8 +174,6 @@
                      (else "active"))
                (tween-run t) (tween-run-time t) (tween-duration t))))
 
-  (define (finite-real? x) (and (real? x) (finite? x)))
-
   (define (check-time who what x)
     (unless (and (finite-real? x) (>= x 0))
       (error who (sprintf "~a: expected a finite real number >= 0, got ~s" what x))))
@@ -251,19 +249,30 @@
       (if (null? props)
           e
           (let ((p (car props)))
-            (loop (cdr props) (entity-set e (car p) (value-of (cadr p) (cddr p))))))))
+            (loop (cdr props) (entity-set e (car p) (value-of (car p) (cadr p) (cddr p))))))))
 
   ;; The exact end value of run `run`.
   (define (write-run-end t entity run)
     (if (backwards-run? t run)
-        (write-props entity (tween-props t) (lambda (start target) start))
-        (write-props entity (tween-props t) (lambda (start target) target))))
+        (write-props entity (tween-props t) (lambda (key start target) start))
+        (write-props entity (tween-props t) (lambda (key start target) target))))
 
+  ;; The props at time run-time into run `run`: start to target by the
+  ;; eased fraction k, through lerp, so that a span wider than the largest
+  ;; flonum (-1e308 to 1e308) is still walked. Only an easing that
+  ;; overshoots (back, elastic, a procedure of the game's) can leave the
+  ;; flonums' range: that is an error naming the entity and the key.
   (define (write-at t entity run run-time)
     (let* ((u (/ run-time (tween-duration t)))
            (k ((tween-ease t) (if (backwards-run? t run) (- 1 u) u))))
       (write-props entity (tween-props t)
-                   (lambda (start target) (+ start (* (- target start) k))))))
+                   (lambda (key start target)
+                     (let ((v (lerp start target k)))
+                       (if (finite-real? v)
+                           v
+                           (error 'tween-step
+                                  (sprintf "entity ~a: the tween of ~s from ~s to ~s eased to ~s gives ~s, not a finite number"
+                                           (entity-label entity) key start target k v))))))))
 
   (define (finish t entity last-run)
     (values (%make-tween (tween-props t) (tween-duration t) (tween-delay t)
@@ -271,12 +280,22 @@
                          (tween-yoyo? t) 0 last-run (tween-duration t) #t)
             (write-run-end t entity last-run)))
 
-  ;; How many whole runs `time` covers, as an exact integer, corrected for
-  ;; rounding so that 0 <= time - n*duration < duration.
+  ;; How many whole runs `time` covers and the time left into the next:
+  ;; (values n rest) with n an exact integer and 0 <= rest < duration.
+  ;; Flonums divide as flonums while the count is below 2^52 (and rest is
+  ;; corrected for their rounding); a count beyond (a run of 5e-324 ms, or
+  ;; time near the largest flonum) is counted exactly instead, however
+  ;; large, where time / duration would be +inf.0.
   (define (whole-runs time duration)
-    (let* ((n (inexact->exact (floor (/ time duration))))
-           (n (if (< time (* n duration)) (- n 1) n)))
-      (if (>= (- time (* n duration)) duration) (+ n 1) n)))
+    (let ((q (/ time duration)))
+      (if (or (exact? q) (< q 4503599627370496.))
+          (let* ((n (let ((f (floor q))) (if (exact? f) f (inexact->exact f))))
+                 (n (if (< time (* n duration)) (- n 1) n))
+                 (n (if (>= (- time (* n duration)) duration) (+ n 1) n)))
+            (values n (- time (* n duration))))
+          (let* ((t (inexact->exact time)) (d (inexact->exact duration))
+                 (n (floor (/ t d))))
+            (values n (exact->inexact (- t (* n d))))))))
 
   ;; An entity argument as an alist: a plist is converted as make-tween
   ;; does; anything that is neither is an error naming `who`.
@@ -303,21 +322,25 @@
                            (tween-yoyo? t) (- (tween-delay-left t) dt) 0 0 #f)
               entity))
      (else
-      (let* ((time (+ (tween-run-time t) (- dt (tween-delay-left t))))
+      (let* ((time (elapsed (tween-run-time t) (- dt (tween-delay-left t))))
              (duration (tween-duration t))
              (repeat (tween-repeat t))
              (last-run (and (>= repeat 0) repeat)))
         (if (zero? duration)
             (finish t entity last-run)
-            (let* ((n (whole-runs time duration))
-                   (run (+ (tween-run t) n)))
-              (if (and last-run (> run last-run))
-                  (finish t entity last-run)
-                  (let ((run-time (- time (* n duration))))
+            (receive (n run-time) (whole-runs time duration)
+              (let ((run (+ (tween-run t) n)))
+                (if (and last-run (> run last-run))
+                    (finish t entity last-run)
                     (values (%make-tween (tween-props t) duration (tween-delay t)
                                          (tween-ease t) (tween-on-complete t) repeat
                                          (tween-yoyo? t) 0 run run-time #f)
                             (write-at t entity run run-time))))))))))
+
+  ;; a + b of two finite times, exact when the flonum sum would overflow.
+  (define (elapsed a b)
+    (let ((s (+ a b)))
+      (if (finite-real? s) s (+ (inexact->exact a) (inexact->exact b)))))
 
   ;; Pipeline step: advance #:tween. A tween that finishes is removed from
   ;; the entity, then its on-complete (if any) gets the entity and returns

@@ -489,7 +489,8 @@
   (define unset (list 'unset))
 
   ;; repl: #f; 'stdin; a TCP port number (0: any free one); or a list of
-  ;; such. The port is printed when the REPL opens.
+  ;; such. The port and its secret's file are printed when the REPL opens;
+  ;; its limits are the (downstroke repl) parameters of the moment.
   (define (repl-options who repl)
     (let ((parts (if (list? repl) repl (list repl))))
       (for-each (lambda (p)
@@ -547,7 +548,11 @@
            (let-values (((stdin? port) (repl-options 'game-run! repl)))
              (set! served (cons game (make-repl port: port stdin?: stdin?)))
              (when port
-               (print "downstroke: repl on 127.0.0.1 port " (repl-port (cdr served)))
+               ;; the secret's file, and the command that sends it
+               (let ((port (repl-port (cdr served))))
+                 (print "downstroke: repl on 127.0.0.1 port " port ", for this user only (secret in "
+                        (repl-secret-file (cdr served)) ")")
+                 (print "downstroke: connect with: csi -q -R downstroke.repl -e '(repl-connect " port ")'"))
                (flush-output))))
          (game-start! game)
          (set! ran (run-loop! game renderer script frames

@@ -540,41 +540,70 @@ EOF
                       (cdr e))
             (loop (cdr s) (car e)))))))
 
+  ;; The entry in force at `frame`: the last one whose frame is at or
+  ;; before it, found from `entry` (one such entry for an earlier frame, or
+  ;; #f) and `rest` (the entries after it). Returns it and the entries
+  ;; after it.
+  (define (entry-at rest entry frame)
+    (if (or (null? rest) (> (car (car rest)) frame))
+        (values entry rest)
+        (entry-at (cdr rest) (car rest) frame)))
+
+  ;; (values held taps) of the entry in force at `frame` (#f: none).
+  (define (entry-held entry frame)
+    (if entry
+        (let ((acts (cdr entry)))
+          (values (let held ((xs acts))
+                    (cond ((null? xs) '())
+                          ((or (tap-element? (car xs)) (mouse-element? (car xs))) (held (cdr xs)))
+                          (else (cons (car xs) (held (cdr xs))))))
+                  (if (= (car entry) frame)
+                      (let taps ((xs acts))
+                        (cond ((null? xs) '())
+                              ((tap-element? (car xs)) (cons (cadr (car xs)) (taps (cdr xs))))
+                              (else (taps (cdr xs)))))
+                      '())))
+        (values '() '())))
+
+  ;; The pointer position the entry in force sets if it is for exactly
+  ;; `frame`, as (x . y), or #f.
+  (define (entry-mouse entry frame)
+    (and entry (= (car entry) frame)
+         (let find ((xs (cdr entry)))
+           (cond ((null? xs) #f)
+                 ((mouse-element? (car xs)) (cons (cadr (car xs)) (caddr (car xs))))
+                 (else (find (cdr xs)))))))
+
   ;; (values held taps) of `script` at `frame`.
   (define (script-held-at script frame)
-    (let loop ((s script) (entry #f))
-      (if (or (null? s) (> (car (car s)) frame))
-          (if entry
-              (let ((acts (cdr entry)))
-                (values (let held ((xs acts))
-                          (cond ((null? xs) '())
-                                ((or (tap-element? (car xs)) (mouse-element? (car xs))) (held (cdr xs)))
-                                (else (cons (car xs) (held (cdr xs))))))
-                        (if (= (car entry) frame)
-                            (let taps ((xs acts))
-                              (cond ((null? xs) '())
-                                    ((tap-element? (car xs)) (cons (cadr (car xs)) (taps (cdr xs))))
-                                    (else (taps (cdr xs)))))
-                            '())))
-              (values '() '()))
-          (loop (cdr s) (car s)))))
+    (let-values (((entry rest) (entry-at script #f frame)))
+      (entry-held entry frame)))
 
   ;; The pointer position an entry for exactly `frame` sets, as (x . y), or #f.
   (define (script-mouse-at script frame)
     (let loop ((s script))
       (cond ((or (null? s) (> (car (car s)) frame)) #f)
-            ((= (car (car s)) frame)
-             (let find ((xs (cdr (car s))))
-               (cond ((null? xs) #f)
-                     ((mouse-element? (car xs)) (cons (cadr (car xs)) (caddr (car xs))))
-                     (else (find (cdr xs))))))
+            ((= (car (car s)) frame) (entry-mouse (car s) frame))
             (else (loop (cdr s))))))
 
+  ;; The procedure keeps its place in the script: frames asked in
+  ;; increasing order (as a game runs) cost one step along the script in
+  ;; all, and a frame earlier than the last one asked starts again from
+  ;; the script's start.
   (define (scripted-input script #!optional (config #f))
     (check-script script (or config *default-input-config*))
-    (lambda (frame prev #!optional (config #f))
-      (receive (held taps) (script-held-at script frame)
-        (input-from-held prev held taps (script-mouse-at script frame) config))))
+    ;; the last frame asked, the entry in force then and the entries after it
+    (let ((asked -1) (entry #f) (rest script))
+      (lambda (frame prev #!optional (config #f))
+        (let-values (((e r) (if (and (exact-integer? frame) (>= frame asked))
+                                (entry-at rest entry frame)
+                                (entry-at script #f frame))))
+          (when (exact-integer? frame)
+            (set! asked frame)
+            (set! entry e)
+            (set! rest r))
+          (receive (held taps) (entry-held e frame)
+            (input-from-held prev held taps (entry-mouse e frame) config))))))
 
   ;; A recording: the script entries so far, newest first, the held set
   ;; of the last frame recorded and the pointer's position then.

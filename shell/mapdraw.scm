@@ -67,13 +67,31 @@
   (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
           (downstroke sdl2) (downstroke map))
 
-  ;; The rounding rule: world coordinate -> whole screen pixel.
-  (define (screen-coordinate x camera)
-    (let ((v (floor (- x camera))))
-      (if (exact? v) v (inexact->exact v))))
+  ;; A drawing coordinate as a whole pixel, floor(v), an exact integer:
+  ;; every position this module and the renderer draw at comes through
+  ;; here, and sdl2.scm turns it into the C ints SDL takes (cutting what
+  ;; lies beyond them without changing what the view shows). A flonum
+  ;; beyond 2^53 is converted exactly, however large (1e308 is an integer
+  ;; of 1024 bits), so far-away geometry stays true. An infinity, an edge
+  ;; that overflowed (1e308 + 1e308), is +-2^31, beyond every view; NaN,
+  ;; a position lost to overflow (+inf.0 - +inf.0), stays NaN and nothing
+  ;; is drawn there: every comparison with it is false, and sdl2.scm draws
+  ;; no rect holding one.
+  (define-inline (whole-pixel v)
+    (let ((f (floor v)))
+      (if (exact? f) f (flonum-pixel f))))
 
-  (define (floor-int x) (let ((v (floor x))) (if (exact? v) v (inexact->exact v))))
-  (define (ceiling-int x) (let ((v (ceiling x))) (if (exact? v) v (inexact->exact v))))
+  (define (flonum-pixel f)
+    (cond ((finite? f) (inexact->exact f))
+          ((nan? f) f)
+          ((> f 0) 2147483648)
+          (else -2147483648)))
+
+  ;; The rounding rule: world coordinate -> whole screen pixel.
+  (define (screen-coordinate x camera) (whole-pixel (- x camera)))
+
+  (define (floor-int x) (whole-pixel x))
+  (define (ceiling-int x) (- (whole-pixel (- x))))
   ;; Tiled's rounding of positions: half up.
   (define (round-half-up x) (floor-int (+ x 1/2)))
 
@@ -225,7 +243,13 @@
 
   ;; Calls (visit col row) for the cells in Tiled's drawing order (see
   ;; above); cols c0..c1 and rows r0..r1, inclusive.
+  ;; A range lost to overflow (a bound that is not an exact integer)
+  ;; visits nothing.
   (define (for-each-cell-in-order tm c0 c1 r0 r1 visit)
+    (when (and (exact-integer? c0) (exact-integer? c1) (exact-integer? r0) (exact-integer? r1))
+      (visit-cells-in-order tm c0 c1 r0 r1 visit)))
+
+  (define (visit-cells-in-order tm c0 c1 r0 r1 visit)
     (case (tilemap-orientation tm)
       ((isometric)
        (do ((s (+ c0 r0) (+ s 1))) ((> s (+ c1 r1)))
@@ -310,8 +334,9 @@
                         (or (tile-height t) (and img (image-height img)) 0))))
                0 (tileset-tiles ts))))
 
-  ;; One tile layer: the cells whose image the view vw x vh can show.
-  (define (draw-tile-layer! r tm layer cx cy vw vh tex-for prepare! time)
+  ;; One tile layer, seen through its layer camera (lx, ly): the cells
+  ;; whose image the view vw x vh can show.
+  (define (draw-tile-layer! r tm layer lx ly vw vh tex-for prepare! time)
     (let ((tw (tilemap-tile-width tm))
           (th (tilemap-tile-height tm))
           (col0 (tilemap-origin-col tm))
@@ -326,52 +351,51 @@
                            (or (not (zero? (tileset-offset-x (car tss))))
                                (not (zero? (tileset-offset-y (car tss))))
                                (loop (cdr tss)))))))
-      (receive (lx ly) (layer-camera tm layer cx cy)
-        (receive (reach-l reach-r reach-u reach-d) (tile-reach tm)
-          (let ((c-lo col0) (c-hi (+ col0 width -1))
-                (r-lo row0) (r-hi (+ row0 (tilemap-height tm) -1)))
-            (define (draw-cell col row)
-              (let ((cell (u32vector-ref data (+ (* (- row row0) width) (- col col0)))))
-                (unless (zero? (cell-gid cell))
-                  (receive (tex sx sy sw sh) (gid-image tm (cell-gid cell) tex-for time)
-                    (when tex
-                      (receive (ax ay) (tilemap-cell-anchor tm col row)
-                        (let* ((ts (and offsets? (tilemap-tileset-for tm cell)))
-                               (left (screen-coordinate (+ ax (if ts (tileset-offset-x ts) 0)) lx))
-                               (bottom (screen-coordinate (+ ay (if ts (tileset-offset-y ts) 0)) ly))
-                               (turn (if hex?
-                                         (+ (if (cell-flipped-diagonally? cell) 60 0)
-                                            (if (cell-rotated-hex-120? cell) 120 0))
-                                         0))
-                               (d? (and (not hex?) (cell-flipped-diagonally? cell)))
-                               ;; a turned hexagon may reach beyond its box
-                               (w (cond (d? sh) ((> turn 0) (max sw sh)) (else sw)))
-                               (h (cond (d? sw) ((> turn 0) (max sw sh)) (else sh))))
-                          ;; only images that meet the view
-                          (when (and (< left vw) (> (+ left w) 0) (< (- bottom h) vh) (> bottom 0))
-                            (prepare! tex)
-                            (draw-tile! r tex sx sy sw sh left bottom
-                                        (cell-flipped-horizontally? cell)
-                                        (cell-flipped-vertically? cell)
-                                        d? turn)))))))))
-            (if ortho?
-                ;; the cells whose images can meet [lx, lx+vw) x [ly, ly+vh):
-                ;; image x spans [c*tw + ox, c*tw + ox + w), y spans
-                ;; [(r+1)*th + oy - h, (r+1)*th + oy)
-                (for-each-cell-in-order
-                 tm
-                 (max c-lo (+ 1 (floor-int (/ (- lx reach-r) tw))))
-                 (min c-hi (- (ceiling-int (/ (+ lx vw reach-l) tw)) 1))
-                 (max r-lo (floor-int (/ (- ly reach-d) th)))
-                 (min r-hi (- (ceiling-int (/ (+ ly vh reach-u) th)) 2))
-                 draw-cell)
-                ;; the cells whose anchors can fall in the view grown by
-                ;; the tiles' reach, from the inverse of tilemap-cell-anchor
-                (receive (c0 c1 r0 r1)
-                    (anchor-cells tm (- lx reach-r) (+ lx vw reach-l)
-                                  (- ly reach-d) (+ ly vh reach-u))
-                  (for-each-cell-in-order tm (max c-lo c0) (min c-hi c1)
-                                          (max r-lo r0) (min r-hi r1) draw-cell))))))))
+      (receive (reach-l reach-r reach-u reach-d) (tile-reach tm)
+        (let ((c-lo col0) (c-hi (+ col0 width -1))
+              (r-lo row0) (r-hi (+ row0 (tilemap-height tm) -1)))
+          (define (draw-cell col row)
+            (let ((cell (u32vector-ref data (+ (* (- row row0) width) (- col col0)))))
+              (unless (zero? (cell-gid cell))
+                (receive (tex sx sy sw sh) (gid-image tm (cell-gid cell) tex-for time)
+                  (when tex
+                    (receive (ax ay) (tilemap-cell-anchor tm col row)
+                      (let* ((ts (and offsets? (tilemap-tileset-for tm cell)))
+                             (left (screen-coordinate (+ ax (if ts (tileset-offset-x ts) 0)) lx))
+                             (bottom (screen-coordinate (+ ay (if ts (tileset-offset-y ts) 0)) ly))
+                             (turn (if hex?
+                                       (+ (if (cell-flipped-diagonally? cell) 60 0)
+                                          (if (cell-rotated-hex-120? cell) 120 0))
+                                       0))
+                             (d? (and (not hex?) (cell-flipped-diagonally? cell)))
+                             ;; a turned hexagon may reach beyond its box
+                             (w (cond (d? sh) ((> turn 0) (max sw sh)) (else sw)))
+                             (h (cond (d? sw) ((> turn 0) (max sw sh)) (else sh))))
+                        ;; only images that meet the view
+                        (when (and (< left vw) (> (+ left w) 0) (< (- bottom h) vh) (> bottom 0))
+                          (prepare! tex)
+                          (draw-tile! r tex sx sy sw sh left bottom
+                                      (cell-flipped-horizontally? cell)
+                                      (cell-flipped-vertically? cell)
+                                      d? turn)))))))))
+          (if ortho?
+              ;; the cells whose images can meet [lx, lx+vw) x [ly, ly+vh):
+              ;; image x spans [c*tw + ox, c*tw + ox + w), y spans
+              ;; [(r+1)*th + oy - h, (r+1)*th + oy)
+              (for-each-cell-in-order
+               tm
+               (max c-lo (+ 1 (floor-int (/ (- lx reach-r) tw))))
+               (min c-hi (- (ceiling-int (/ (+ lx vw reach-l) tw)) 1))
+               (max r-lo (floor-int (/ (- ly reach-d) th)))
+               (min r-hi (- (ceiling-int (/ (+ ly vh reach-u) th)) 2))
+               draw-cell)
+              ;; the cells whose anchors can fall in the view grown by
+              ;; the tiles' reach, from the inverse of tilemap-cell-anchor
+              (receive (c0 c1 r0 r1)
+                  (anchor-cells tm (- lx reach-r) (+ lx vw reach-l)
+                                (- ly reach-d) (+ ly vh reach-u))
+                (for-each-cell-in-order tm (max c-lo c0) (min c-hi c1)
+                                        (max r-lo r0) (min r-hi r1) draw-cell)))))))
 
   ;; The screen positions at which copies of a span of `size` pixels
   ;; starting at `start` are drawn to cover [0, view) when repeated, or
@@ -385,19 +409,18 @@
 
   ;; One image layer: its image at the layer's offset, repeated across the
   ;; view along an axis marked repeatx / repeaty.
-  (define (draw-image-layer! r tm layer cx cy vw vh tex-for prepare!)
+  (define (draw-image-layer! r tm layer lx ly vw vh tex-for prepare!)
     (let ((img (layer-image layer)))
       (when (and img (image-source img))
         (let ((tex (tex-for layer (image-source img))))
           (prepare! tex)
           (receive (iw ih) (texture-size tex)
-            (receive (lx ly) (layer-camera tm layer cx cy)
-              (for-each
-               (lambda (y)
-                 (for-each
-                  (lambda (x) (render-copy! r tex #f (make-rect x y iw ih)))
-                  (repeat-positions (screen-coordinate 0 lx) iw vw (layer-repeat-x? layer))))
-               (repeat-positions (screen-coordinate 0 ly) ih vh (layer-repeat-y? layer)))))))))
+            (for-each
+             (lambda (y)
+               (for-each
+                (lambda (x) (render-copy! r tex #f (make-rect x y iw ih)))
+                (repeat-positions (screen-coordinate 0 lx) iw vw (layer-repeat-x? layer))))
+             (repeat-positions (screen-coordinate 0 ly) ih vh (layer-repeat-y? layer))))))))
 
   ;; The box an object covers on the screen, (values x y w h), unrotated:
   ;; tilemap-object-box on orthogonal, staggered and hexagonal maps; on
@@ -438,41 +461,42 @@
   ;; rotation about its anchor point, in the layer's draw order (topdown:
   ;; by y, index: as written). Other shapes are drawn only by the debug
   ;; overlay.
-  (define (draw-object-layer! r tm layer cx cy tex-for prepare! time)
-    (receive (lx ly) (layer-camera tm layer cx cy)
-      (for-each
-       (lambda (o)
-         (when (and (object-visible? o) (eq? (object-shape o) 'tile))
-           (receive (tex sx sy sw sh) (gid-image tm (object-gid o) tex-for time)
-             (when tex
-               (prepare! tex)
-               (receive (bx by bw bh) (object-screen-box tm o)
-                 (receive (px py) (tilemap-screen-point tm (object-x o) (object-y o))
-                   (let* ((angle (object-rotation o))
-                          ;; the box's centre, turned about the anchor
-                          (dx (- (+ bx (/ bw 2)) px)) (dy (- (+ by (/ bh 2)) py))
-                          (mx (+ px (- (* dx (cosine angle)) (* dy (sine angle)))))
-                          (my (+ py (* dx (sine angle)) (* dy (cosine angle))))
-                          (x0 (screen-coordinate (- mx (/ bw 2)) lx))
-                          (y0 (screen-coordinate (- my (/ bh 2)) ly))
-                          (x1 (screen-coordinate (+ mx (/ bw 2)) lx))
-                          (y1 (screen-coordinate (+ my (/ bh 2)) ly))
-                          (cell (object-cell o))
-                          (h? (cell-flipped-horizontally? cell))
-                          (v? (cell-flipped-vertically? cell)))
-                     (when (and (> x1 x0) (> y1 y0))
-                       (render-copy! r tex (make-rect sx sy sw sh)
-                                     (make-rect x0 y0 (- x1 x0) (- y1 y0))
-                                     angle: angle
-                                     flip: (append (if h? '(horizontal) '())
-                                                   (if v? '(vertical) '())))))))))))
-       (if (eq? (layer-draw-order layer) 'index)
-           (layer-objects layer)
-           (sort (layer-objects layer) (lambda (a b) (< (object-y a) (object-y b))))))))
+  (define (draw-object-layer! r tm layer lx ly tex-for prepare! time)
+    (for-each
+     (lambda (o)
+       (when (and (object-visible? o) (eq? (object-shape o) 'tile))
+         (receive (tex sx sy sw sh) (gid-image tm (object-gid o) tex-for time)
+           (when tex
+             (prepare! tex)
+             (receive (bx by bw bh) (object-screen-box tm o)
+               (receive (px py) (tilemap-screen-point tm (object-x o) (object-y o))
+                 (let* ((angle (object-rotation o))
+                        ;; the box's centre, turned about the anchor
+                        (dx (- (+ bx (/ bw 2)) px)) (dy (- (+ by (/ bh 2)) py))
+                        (mx (+ px (- (* dx (cosine angle)) (* dy (sine angle)))))
+                        (my (+ py (* dx (sine angle)) (* dy (cosine angle))))
+                        (x0 (screen-coordinate (- mx (/ bw 2)) lx))
+                        (y0 (screen-coordinate (- my (/ bh 2)) ly))
+                        (x1 (screen-coordinate (+ mx (/ bw 2)) lx))
+                        (y1 (screen-coordinate (+ my (/ bh 2)) ly))
+                        (cell (object-cell o))
+                        (h? (cell-flipped-horizontally? cell))
+                        (v? (cell-flipped-vertically? cell)))
+                   (when (and (> x1 x0) (> y1 y0))
+                     (render-copy! r tex (make-rect sx sy sw sh)
+                                   (make-rect x0 y0 (- x1 x0) (- y1 y0))
+                                   angle: angle
+                                   flip: (append (if h? '(horizontal) '())
+                                                 (if v? '(vertical) '())))))))))))
+     (if (eq? (layer-draw-order layer) 'index)
+         (layer-objects layer)
+         (sort (layer-objects layer) (lambda (a b) (< (object-y a) (object-y b)))))))
 
   ;; Every visible layer of the map, in the map's order (Tiled's, groups'
   ;; children where the group is), through a camera at (cx, cy) and a view
-  ;; of vw x vh pixels, animated tiles at `time` ms.
+  ;; of vw x vh pixels, animated tiles at `time` ms. A layer whose camera
+  ;; overflows (a parallax factor of 1e308 with the camera 2 px from the
+  ;; origin) is further away than any flonum: it is not drawn.
   (define (render-map-layers! r tm cx cy vw vh tex-for #!optional (time 0))
     (unless (and (real? time) (finite? time))
       (error 'render-map-layers! "time: must be a finite number of milliseconds" time))
@@ -483,14 +507,16 @@
            (if (eq? (layer-kind layer) 'group)
                (walk (layer-children layer) tint)
                (when (and (layer-visible? layer) (> (layer-opacity layer) 0))
-                 (with-layer-mods
-                  tint (layer-opacity layer)
-                  (lambda (prepare!)
-                    (case (layer-kind layer)
-                      ((tile) (draw-tile-layer! r tm layer cx cy vw vh tex-for prepare! time))
-                      ((image) (draw-image-layer! r tm layer cx cy vw vh tex-for prepare!))
-                      ((object) (draw-object-layer! r tm layer cx cy tex-for prepare! time))
-                      (else (void)))))))))
+                 (receive (lx ly) (layer-camera tm layer cx cy)
+                   (when (and (finite? lx) (finite? ly))
+                     (with-layer-mods
+                      tint (layer-opacity layer)
+                      (lambda (prepare!)
+                        (case (layer-kind layer)
+                          ((tile) (draw-tile-layer! r tm layer lx ly vw vh tex-for prepare! time))
+                          ((image) (draw-image-layer! r tm layer lx ly vw vh tex-for prepare!))
+                          ((object) (draw-object-layer! r tm layer lx ly tex-for prepare! time))
+                          (else (void)))))))))))
        layers)))
 
   ;; Every orientation Tiled 1.8 has is drawn; anything else is an error

@@ -45,7 +45,14 @@
 ;;; sizes are whole pixels already (tile sizes) or rounded the same way
 ;;; (an entity's rect covers floor(x - cx) to floor(x + w - cx)).
 ;;; So everything moves by whole pixels together and nothing jitters against
-;;; the map.
+;;; the map. Far-away numbers (mapdraw.scm's whole-pixel, sdl2.scm's
+;;; downstroke_rect and render-copy!): a pixel stays an exact integer
+;;; however large; an edge that overflowed to an infinity lies beyond every
+;;; view and a NaN nowhere; SDL is handed only what it holds, and a copy far
+;;; beyond the view is cut on whole texels, so a sprite of #:scale 1e308
+;;; (its box computed again in exact numbers) shows the texels the view sees.
+;;; An entity's #:x #:y #:width #:height that is not a finite number is an
+;;; error naming the entity and the key (entity.scm's check-entity-number).
 ;;;
 ;;; The layer camera. A layer with parallax factors (px, py) (Tiled's
 ;;; parallaxx / parallaxy, multiplied through groups) in a map whose
@@ -107,7 +114,8 @@
    ;; for sibling modules only: the level loader refuses a map it cannot draw
    check-map-orientation)
 
-  (import (downstroke keywords) (only (downstroke check) report-entity-problems!))
+  (import (downstroke keywords) (only (downstroke check) report-entity-problems!)
+          (only (downstroke numbers) finite-real?))
   (import scheme (chicken base) (chicken format) (chicken sort) (chicken fixnum) (chicken foreign)
           srfi-4
           (downstroke sdl2) (downstroke entity) (downstroke scene)
@@ -179,12 +187,25 @@
   ;; A key's number, checked: the error names the entity and the key.
   (define (sprite-number e key default)
     (let ((v (entity-ref e key default)))
-      (if (and (real? v) (or (exact? v) (finite? v)))
+      (if (finite-real? v)
           v
           (error 'render-scene! (sprintf "entity ~a: ~s is ~s, not a finite number"
                                          (entity-label e) key v)))))
 
-  (define (byte-of x) (max 0 (min 255 (round-int x))))
+  ;; A colour or alpha component, rounded and held to 0-255 (a tint of
+  ;; 300 or +inf.0 is full, -1 none); x is a finite number or an infinity.
+  (define (byte-of x) (cond ((>= x 255) 255) ((<= x 0) 0) (else (round-int x))))
+
+  (define (components? c)
+    (or (null? c) (and (real? (car c)) (not (nan? (car c))) (components? (cdr c)))))
+
+  ;; An entity's position or size as the renderer reads it: #f is the
+  ;; default 0, a fixnum passes at no cost, anything else is checked as
+  ;; physics checks it (an error naming the entity and the key).
+  (define-inline (drawn-number e key v)
+    (cond ((fixnum? v) v)
+          ((not v) 0)
+          (else (check-entity-number e key v))))
 
   ;; One entity (see the head of this file). tileset/texture: the scene's
   ;; sprite sheet, either may be #f; sheet-for: (entity name) -> (values
@@ -200,7 +221,8 @@
                           e cx cy tileset texture))
             ((fx< mask plain-keys)
              (draw-plain! r (vector-ref key-values 0) (vector-ref key-values 1)
-                          (or (vector-ref key-values 2) 0) (or (vector-ref key-values 3) 0)
+                          (drawn-number e #:x (vector-ref key-values 2))
+                          (drawn-number e #:y (vector-ref key-values 3))
                           (vector-ref key-values 4) e cx cy tileset texture))
             (else (draw-sprite! r e mask cx cy tileset texture sheet-for)))))
 
@@ -214,7 +236,8 @@
                            (make-rect (screen-coordinate x cx) (screen-coordinate y cy) sw sh)
                            flip: (if (eqv? facing -1) '(horizontal) '()))))
           (color (fill-box! r (color-components 'render-scene! color) x y
-                            (entity-ref e #:width 0) (entity-ref e #:height 0) cx cy))
+                            (drawn-number e #:width (entity-ref e #:width 0))
+                            (drawn-number e #:height (entity-ref e #:height 0)) cx cy))
           (else (void))))
 
   ;; A filled world box x y w h of colour c (r g b a), by the rounding rule.
@@ -258,8 +281,10 @@
                                        c
                                        (list (car c) (cadr c) (caddr c)
                                              (quotient (+ (* (cadddr c) alpha) 127) 255)))
-                                 (entity-ref e #:x 0) (entity-ref e #:y 0)
-                                 (entity-ref e #:width 0) (entity-ref e #:height 0) cx cy))))
+                                 (drawn-number e #:x (entity-ref e #:x 0))
+                                 (drawn-number e #:y (entity-ref e #:y 0))
+                                 (drawn-number e #:width (entity-ref e #:width 0))
+                                 (drawn-number e #:height (entity-ref e #:height 0)) cx cy))))
               (else (void))))))
 
   ;; A tile sw x sh drawn for e: its top-left at #:x + #:sprite-offset-x
@@ -278,19 +303,21 @@
            (ox (num bit-origin-x #:origin-x (/ sw 2)))
            (oy (num bit-origin-y #:origin-y (/ sh 2)))
            (angle (num bit-angle #:angle 0))
-           ;; the origin in the world, and the scaled box about it
-           (px (+ (entity-ref e #:x 0) (num bit-offset-x #:sprite-offset-x 0) ox))
-           (py (+ (entity-ref e #:y 0) (num bit-offset-y #:sprite-offset-y 0) oy))
-           (w (* kx sw)) (h (* ky sh))
-           ;; the box's centre, turned about the origin: SDL turns a copy
-           ;; about its own centre
-           (dx (- (/ w 2) (* kx ox))) (dy (- (/ h 2) (* ky oy)))
-           (mx (if (zero? angle) (+ px dx) (+ px (- (* dx (cosine angle)) (* dy (sine angle))))))
-           (my (if (zero? angle) (+ py dy) (+ py (* dx (sine angle)) (* dy (cosine angle)))))
-           (x0 (screen-coordinate (- mx (/ w 2)) cx))
-           (y0 (screen-coordinate (- my (/ h 2)) cy))
-           (x1 (screen-coordinate (+ mx (/ w 2)) cx))
-           (y1 (screen-coordinate (+ my (/ h 2)) cy))
+           (x (drawn-number e #:x (entity-ref e #:x 0)))
+           (y (drawn-number e #:y (entity-ref e #:y 0)))
+           (offset-x (num bit-offset-x #:sprite-offset-x 0))
+           (offset-y (num bit-offset-y #:sprite-offset-y 0))
+           (box (sprite-box x y offset-x offset-y kx ky ox oy sw sh angle))
+           (box (if (finite-box? box)
+                    box
+                    ;; past the largest flonum (#:scale 1e308): the same
+                    ;; box in exact numbers, whose edges sdl2.scm cuts to
+                    ;; the view on whole texels
+                    (apply sprite-box (map exact-number (list x y offset-x offset-y kx ky ox oy sw sh angle)))))
+           (x0 (screen-coordinate (car box) cx))
+           (y0 (screen-coordinate (cadr box) cy))
+           (x1 (screen-coordinate (caddr box) cx))
+           (y1 (screen-coordinate (cadddr box) cy))
            (flip-x? (not (eq? (and (has? bit-flip-x) #t) (eqv? (entity-ref e #:facing 1) -1))))
            (tint (and (has? bit-tint) (entity-ref e #:tint))))
       (when (or (< kx 0) (< ky 0))
@@ -299,7 +326,8 @@
       (when (and (> x1 x0) (> y1 y0))
         (when tint
           (let ((c (tint-components tint)))
-            (unless (and (list? c) (= (length c) 4))
+            ;; components beyond 0-255 are held to it; a NaN has no colour
+            (unless (and (list? c) (= (length c) 4) (components? c))
               (error 'render-scene! (sprintf "entity ~a: #:tint is ~s, not (r g b)" (entity-label e) tint)))
             (texture-color-mod-set! texture (byte-of (car c)) (byte-of (cadr c)) (byte-of (caddr c)))))
         (when (< alpha 255) (texture-alpha-mod-set! texture alpha))
@@ -313,6 +341,25 @@
          (lambda ()
            (when tint (texture-color-mod-set! texture 255 255 255))
            (when (< alpha 255) (texture-alpha-mod-set! texture 255)))))))
+
+  ;; The world box (x0 y0 x1 y1) of a sprite sw x sh at x + offset-x (y
+  ;; likewise) scaled by kx, ky about its origin (ox, oy) and turned
+  ;; `angle` degrees about it: SDL turns a copy about its own centre, so
+  ;; a turned box is the unturned one moved to the turned centre.
+  (define (sprite-box x y offset-x offset-y kx ky ox oy sw sh angle)
+    (let ((px (+ x offset-x ox)) (py (+ y offset-y oy)))   ; the origin in the world
+      (if (zero? angle)
+          (list (- px (* kx ox)) (- py (* ky oy)) (+ px (* kx (- sw ox))) (+ py (* ky (- sh oy))))
+          (let* ((dx (* kx (- (/ sw 2) ox))) (dy (* ky (- (/ sh 2) oy)))   ; centre from the origin
+                 (mx (+ px (- (* dx (cosine angle)) (* dy (sine angle)))))
+                 (my (+ py (* dx (sine angle)) (* dy (cosine angle))))
+                 (hw (/ (* kx sw) 2)) (hh (/ (* ky sh) 2)))
+            (list (- mx hw) (- my hh) (+ mx hw) (+ my hh))))))
+
+  (define (finite-box? b)
+    (or (null? b) (and (finite-real? (car b)) (finite-box? (cdr b)))))
+
+  (define (exact-number v) (if (exact? v) v (inexact->exact v)))
 
   ;; An emitter's particles (particles.scm), in world coordinates: each a
   ;; filled box of the emitter's size, or its tile of the entity's sheet,
@@ -422,13 +469,14 @@
       (when (and (> x1 x0) (> y1 y0))
         (render-draw-rect! r (make-rect x0 y0 (- x1 x0) (- y1 y0))))))
 
-  (define (finite-real? v) (and (real? v) (finite? v)))
-
   ;; Entities the overlay draws: finite numbers for #:width and #:height,
-  ;; and for #:x and #:y when present (a broken body is physics' to report).
+  ;; and for #:x and #:y when present, with a far edge that is finite too
+  ;; (a broken body is physics' to report).
   (define (sized? e)
-    (and (finite-real? (entity-ref e #:width #f)) (finite-real? (entity-ref e #:height #f))
-         (finite-real? (entity-ref e #:x 0)) (finite-real? (entity-ref e #:y 0))))
+    (let ((x (entity-ref e #:x 0)) (y (entity-ref e #:y 0))
+          (w (entity-ref e #:width #f)) (h (entity-ref e #:height #f)))
+      (and (finite-real? w) (finite-real? h) (finite-real? x) (finite-real? y)
+           (finite-real? (+ x w)) (finite-real? (+ y h)))))
 
   (define/keywords (render-debug-overlay! r scene #!key (view-width #f) (view-height #f)
                                  (velocity-scale *debug-velocity-scale*))
@@ -446,8 +494,9 @@
           (overlay-color! r *debug-object-color*)
           (for-each
            (lambda (layer)
-             (when (layer-visible? layer)
-               (receive (lx ly) (layer-camera tm layer cx cy)
+             (receive (lx ly) (layer-camera tm layer cx cy)
+               ;; a layer further than any flonum is not drawn (mapdraw.scm)
+               (when (and (layer-visible? layer) (finite? lx) (finite? ly))
                  (for-each
                   (lambda (o)
                     (when (object-visible? o)

@@ -8,55 +8,134 @@
 ;;; SDL keeps an application's per-user files (SDL_GetPrefPath); this
 ;;; module itself knows nothing of SDL.
 ;;;
-;;; Only readable data is stored: booleans, numbers (not NaN), characters,
-;;; strings, symbols, keywords, the empty list, pairs and vectors of those,
-;;; at most save-data-max-size bytes written and save-data-max-nodes
-;;; objects (which also stops a circular list). Anything else (a
-;;; procedure, a record, a hash table, eof ...) is an error naming the
-;;; name and the kind of the value found.
+;;; Only data is stored, in the text (downstroke save-text) writes and
+;;; alone reads: booleans, real numbers (not NaN, at most
+;;; save-data-max-digits digits), characters, strings, symbols, keywords,
+;;; the empty list, pairs and vectors of those, at most save-data-max-size
+;;; bytes and save-data-max-nodes objects (which also stops a circular
+;;; list). Anything else is an error naming the name and what was found.
 ;;;
-;;; Writing never leaves a half-written file: the text goes to NAME.scm.tmp
-;;; in the same directory, is flushed to the disk (fsync) and closed, and
-;;; only then renamed over NAME.scm (rename is atomic), after which the
-;;; directory is synced too. A crash at any point leaves the old value or
-;;; the new one, never a mixture (and perhaps a stale NAME.scm.tmp, which
-;;; the next write replaces). One writer of a name at a time: two processes
-;;; saving the same name at once share the temporary file.
+;;; Writing never leaves a half-written file, and a failed write is an
+;;; error that leaves the old value: the text goes to a temporary file
+;;; NAME.scm.tmp.PID.RANDOM in the same directory, created afresh
+;;; (O_CREAT|O_EXCL|O_NOFOLLOW, mode 0600, so a planted file or symbolic
+;;; link is never opened and two writers never share one), written whole
+;;; (a short write, a full disk, a file-size limit are errors), flushed to
+;;; the disk (fsync) and closed, and only then renamed over NAME.scm
+;;; (rename is atomic and replaces a link rather than following it); then
+;;; the directory is synced. Each failing system call's errno is read at
+;;; once and named in the error. A crash leaves the old value or the new
+;;; one, and perhaps a temporary file, which a later write of the name
+;;; removes once the process that made it is gone.
 ;;;
-;;; Reading never evaluates anything: the file (at most save-data-max-size
-;;; bytes, else it is refused before it is read) is first scanned so that
-;;; the only `#` syntax in it is #t #f, characters #\..,
-;;; vectors #( and keywords #: (no #, constructors, #!eof, #$ blobs, #<<
-;;; strings or other reader extensions), then read with the reader table
-;;; the module started with, and must hold exactly one datum, which is
-;;; checked like a value to write. A missing file gives the default, or an
-;;; error without one; a corrupt one (unreadable, truncated, too large, of
-;;; the wrong kinds) gives the default when one is given, else an error
-;;; naming the file and what is wrong. Every error of this module has the
-;;; condition kind save-data (save-data-error?).
+;;; Reading never evaluates anything and never blocks: the file is opened
+;;; with O_NOFOLLOW|O_NONBLOCK, must be a regular file (not a link, FIFO,
+;;; device or directory) of at most save-data-max-size bytes, and its text
+;;; must be exactly one datum of the writer's syntax. A missing file gives
+;;; the default, or an error without one; a corrupt one (not a regular
+;;; file, unreadable syntax, truncated, too large) and a directory name the
+;;; system cannot take (a NUL byte, longer than PATH_MAX) give the default
+;;; when one is given, else an error naming the file and what is wrong.
+;;; Every error of this module has the condition kind save-data
+;;; (save-data-error?).
 
 (module (downstroke save)
   (save-data-write! save-data-read save-data-exists? save-data-delete!
    save-data-path save-data-error? save-data-max-size save-data-max-nodes
+   save-data-max-digits
    ;; for sibling modules only (and the tests): a procedure called as
-   ;; (hook stage path) while writing, stage 'partial when half the bytes
-   ;; are in the temporary file; the tests make it end the process there
+   ;; (hook stage path) while writing: stage 'create with the temporary
+   ;; file's path just before it is created, 'partial when half the bytes
+   ;; are in it; the tests plant a link there, or end the process
    save-data-write-hook)
 
-  (import scheme (chicken base) (chicken format) (chicken condition) (chicken port)
-          (chicken file) (chicken file posix) (chicken foreign) (chicken io)
-          (chicken keyword) (chicken read-syntax) (chicken string) (chicken errno) (chicken blob)
-          (only (chicken memory representation) record-instance? record-instance-type))
+  (import scheme (chicken base) (chicken format) (chicken condition) (chicken foreign)
+          (chicken string) (chicken blob) (chicken random)
+          (only (chicken file) directory)
+          (only (chicken process-context posix) current-process-id)
+          (downstroke save-text))
 
-  (foreign-declare "#include <unistd.h>\n#include <stdio.h>\n#include <string.h>\n#include <fcntl.h>")
+  (foreign-declare #<<EOF
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <signal.h>
+#include <string.h>
+#include <unistd.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#ifndef O_CLOEXEC
+#define O_CLOEXEC 0
+#endif
+#ifndef PATH_MAX
+#define PATH_MAX 4096
+#endif
+/* Each returns at once what the system said: a descriptor or a count,
+   or minus errno, so no later call can overwrite the reason. */
+static int ds_create(const char *path)
+{ int fd = open(path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_NOCTTY | O_CLOEXEC, 0600);
+  return fd < 0 ? -errno : fd; }
+static int ds_open_read(const char *path)
+{ int fd = open(path, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  return fd < 0 ? -errno : fd; }
+/* All of buf[start, end), however many calls write needs: 0 or minus errno. */
+static int ds_write_all(int fd, const char *buf, int start, int end)
+{ while (start < end) {
+    ssize_t n = write(fd, buf + start, (size_t)(end - start));
+    if (n < 0) { if (errno == EINTR) continue; return -errno; }
+    if (n == 0) return -EIO;
+    start += (int)n; }
+  return 0; }
+static int ds_read(int fd, char *buf, int start, int count)
+{ for (;;) { ssize_t n = read(fd, buf + start, (size_t)count);
+    if (n < 0 && errno == EINTR) continue;
+    return n < 0 ? -errno : (int)n; } }
+static int ds_fsync(int fd) { return fsync(fd) == 0 ? 0 : -errno; }
+/* After a successful fsync an interrupted close has nothing left to lose. */
+static int ds_close(int fd) { return close(fd) == 0 || errno == EINTR ? 0 : -errno; }
+static int ds_rename(const char *from, const char *to) { return rename(from, to) == 0 ? 0 : -errno; }
+static int ds_unlink(const char *path) { return unlink(path) == 0 ? 0 : -errno; }
+/* 0 a regular file, 1 a directory, 2 a symbolic link, 3 anything else, or minus errno. */
+static int ds_kind(struct stat *st)
+{ return S_ISREG(st->st_mode) ? 0 : S_ISDIR(st->st_mode) ? 1 : S_ISLNK(st->st_mode) ? 2 : 3; }
+static int ds_fd_kind(int fd) { struct stat st; return fstat(fd, &st) ? -errno : ds_kind(&st); }
+static int ds_path_kind(const char *path) { struct stat st; return lstat(path, &st) ? -errno : ds_kind(&st); }
+static int ds_dir_kind(const char *path) { struct stat st; return stat(path, &st) ? -errno : ds_kind(&st); }
+static double ds_fd_size(int fd) { struct stat st; return fstat(fd, &st) ? -1.0 : (double)st.st_size; }
+static int ds_process_gone(int pid) { return pid > 0 && kill((pid_t)pid, 0) != 0 && errno == ESRCH; }
+static void ds_sync_dir(const char *path)
+{ int fd = open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) { fsync(fd); close(fd); } }
+EOF
+)
 
   (define save-data-max-size (make-parameter (* 1024 1024)))
-  (define save-data-max-nodes (make-parameter 100000))
   (define save-data-write-hook (make-parameter #f))
 
-  ;; The reader table as the module found it, before a game could add
-  ;; read syntax that runs code.
-  (define pristine-read-table (copy-read-table (current-read-table)))
+  (define c-create (foreign-lambda int "ds_create" nonnull-c-string))
+  (define c-open-read (foreign-lambda int "ds_open_read" nonnull-c-string))
+  (define c-write-all (foreign-lambda int "ds_write_all" int scheme-pointer int int))
+  (define c-read (foreign-lambda int "ds_read" int scheme-pointer int int))
+  (define c-fsync (foreign-lambda int "ds_fsync" int))
+  (define c-close (foreign-lambda int "ds_close" int))
+  (define c-rename (foreign-lambda int "ds_rename" nonnull-c-string nonnull-c-string))
+  (define c-unlink (foreign-lambda int "ds_unlink" nonnull-c-string))
+  (define c-fd-kind (foreign-lambda int "ds_fd_kind" int))
+  (define c-path-kind (foreign-lambda int "ds_path_kind" nonnull-c-string))
+  (define c-dir-kind (foreign-lambda int "ds_dir_kind" nonnull-c-string))
+  (define c-fd-size (foreign-lambda double "ds_fd_size" int))
+  (define c-process-gone? (foreign-lambda bool "ds_process_gone" int))
+  (define c-sync-dir (foreign-lambda void "ds_sync_dir" nonnull-c-string))
+  (define c-strerror (foreign-lambda c-string "strerror" int))
+  (define path-max (foreign-value "PATH_MAX" int))
+  (define errno/noent (foreign-value "ENOENT" int))
+  (define errno/notdir (foreign-value "ENOTDIR" int))
+  (define errno/exist (foreign-value "EEXIST" int))
+  (define errno/loop (foreign-value "ELOOP" int))
+  (define errno/nametoolong (foreign-value "ENAMETOOLONG" int))
+
+  ;; The system's sentence for a minus-errno result.
+  (define (reason r) (c-strerror (- r)))
 
   (define (fail who fmt . args)
     (signal (make-composite-condition
@@ -87,201 +166,187 @@
     (unless (and (string? dir) (> (string-length dir) 0))
       (fail who "the directory must be a non-empty string, got ~s" dir)))
 
+  (define (shown s) (if (> (string-length s) 60) (string-append (substring s 0 60) "...") s))
+
+  ;; Why the system cannot be handed this path, or #f.
+  (define (path-problem path)
+    (cond ((substring-index (string #\nul) path) "the directory's name has a NUL byte")
+          ((>= (string-length path) path-max)
+           (sprintf "the path would be ~a bytes, over the system's PATH_MAX (~a)"
+                    (string-length path) path-max))
+          (else #f)))
+
   (define (save-data-path dir name)
     (check-dir 'save-data-path dir)
     (string-append dir (if (char=? #\/ (string-ref dir (- (string-length dir) 1))) "" "/")
                    (name-string 'save-data-path name) ".scm"))
 
-  ;;; What may be stored.
+  ;; The longest temporary name beside a path: .tmp, a pid, 16 hex digits.
+  (define temp-suffix-room 40)
 
-  ;; The kind of the first object in v that is not data, as a phrase, or
-  ;; #f when all of it is; counts objects against the bound.
-  (define (non-data v)
-    (let ((budget (save-data-max-nodes)))
-      (call/cc
-       (lambda (return)
-         (let walk ((v v))
-           (set! budget (- budget 1))
-           (when (< budget 0)
-             (return (sprintf "more than ~a objects (or a circular list)" (save-data-max-nodes))))
-           (cond ((or (boolean? v) (char? v) (string? v) (symbol? v) (keyword? v) (null? v)) #f)
-                 ((number? v) (and (not (= v v)) "a NaN number"))
-                 ((pair? v) (or (walk (car v)) (walk (cdr v))))
-                 ((vector? v) (let loop ((i 0))
-                                (and (< i (vector-length v))
-                                     (or (walk (vector-ref v i)) (loop (+ i 1))))))
-                 (else (return (kind-of v)))))))))
-
-  (define (kind-of v)
-    (cond ((procedure? v) "a procedure")
-          ((eof-object? v) "the end-of-file object")
-          ((port? v) "a port")
-          ((condition? v) "a condition")
-          ((record-instance? v) (sprintf "a record (~a)" (record-instance-type v)))
-          ((blob? v) "a blob")
-          (else (sprintf "a ~a" (let ((s (with-output-to-string (lambda () (write v)))))
-                                  (if (> (string-length s) 40) (string-append (substring s 0 40) "...") s))))))
-
-  ;;; The safe reader.
-
-  ;; #f when text uses only the allowed # syntax, else a description of
-  ;; the first other use and where it is.
-  (define (forbidden-syntax text)
-    (let ((n (string-length text)))
-      (define (at i) (string-ref text i))
-      (define (where i)
-        (let loop ((j 0) (line 1))
-          (if (= j i) line (loop (+ j 1) (if (char=? (at j) #\newline) (+ line 1) line)))))
-      ;; what may come before a # that is inside a token (a#b, 1#), not
-      ;; the start of a datum: not @ (,@#...) nor . ( .#...)
-      (define (constituent? c)
-        (or (char-alphabetic? c) (char-numeric? c) (memv c (string->list "!$%&*/:<=>?^_~+-"))))
-      ;; the index after a string or |symbol| opening at i
-      (define (after-delimited i q)
-        (let skip ((j (+ i 1)))
-          (cond ((>= j n) j)
-                ((char=? (at j) #\\) (skip (+ j 2)))
-                ((char=? (at j) q) (+ j 1))
-                (else (skip (+ j 1))))))
-      (let loop ((i 0))
-        (if (>= i n)
-            #f
-            (let ((c (at i)))
-              (cond ((char=? c #\") (loop (after-delimited i #\")))
-                    ((char=? c #\|) (loop (after-delimited i #\|)))
-                    ((char=? c #\;) (let skip ((j i))
-                                      (cond ((>= j n) #f)
-                                            ((char=? (at j) #\newline) (loop (+ j 1)))
-                                            (else (skip (+ j 1))))))
-                    ((and (char=? c #\#) (or (= i 0) (not (constituent? (at (- i 1))))))
-                     (if (= (+ i 1) n)
-                         (sprintf "a lone # at the end (line ~a)" (where i))
-                         (let ((d (at (+ i 1))))
-                           (cond ((memv d '(#\t #\f #\( #\:)) (loop (+ i 2)))
-                                 ;; a character: the one after #\ is never syntax
-                                 ((char=? d #\\) (loop (+ i 3)))
-                                 (else (sprintf "the syntax #~a (line ~a): only #t #f #\\ #( and #: are data"
-                                                d (where i)))))))
-                    (else (loop (+ i 1)))))))))
-
-  ;; The one datum of text, or raises what is wrong as a string.
-  (define (read-datum text)
-    (let ((bad (forbidden-syntax text)))
-      (when bad (raise-text bad)))
-    (let ((port (open-input-string text)))
-      (let ((v (condition-case
-                   (parameterize ((current-read-table pristine-read-table)
-                                  (case-sensitive #t) (keyword-style #:suffix))
-                     (let* ((v (read port)) (after (read port))) (cons v after)))
-                 (e (exn) (raise-text ((condition-property-accessor 'exn 'message "unreadable") e))))))
-        (when (eof-object? (car v)) (raise-text "it holds no value (empty or truncated)"))
-        (unless (eof-object? (cdr v)) (raise-text "it holds more than one value"))
-        (let ((kind (non-data (car v))))
-          (when kind (raise-text (sprintf "it holds ~a, which is not data" kind))))
-        (car v))))
-
-  (define (raise-text s) (signal (make-property-condition 'save-data-text 'text s)))
-  (define text-of (condition-property-accessor 'save-data-text 'text))
+  (define (temp-path path)
+    (let ((r (random-bytes (make-blob 8))))
+      (sprintf "~a.tmp.~a.~a" path (current-process-id)
+               (apply string-append
+                      (map (lambda (c) (let ((s (number->string (char->integer c) 16)))
+                                         (if (< (string-length s) 2) (string-append "0" s) s)))
+                           (string->list (blob->string r)))))))
 
   ;;; Writing.
 
-  (define posix-rename (foreign-lambda int "rename" c-string c-string))
-  (define posix-fsync (foreign-lambda int "fsync" int))
-  (define strerror (foreign-lambda c-string "strerror" int))
-
-  (define (sync-directory! dir)
-    ;; best effort: some file systems refuse to sync a directory
-    (let ((fd ((foreign-lambda* int ((c-string d)) "C_return(open(d, O_RDONLY));") dir)))
-      (when (>= fd 0)
-        (posix-fsync fd)
-        ((foreign-lambda int "close" int) fd))))
-
   ;; The file's text: a comment saying what it is, the value, a newline.
-  (define (serialize name value)
-    (string-append ";; downstroke save data " name "\n"
-                   (with-output-to-string
-                     (lambda () (parameterize ((keyword-style #:suffix)) (write value))))
-                   "\n"))
+  (define (file-text who n value)
+    (let ((kind (data-problem value)))
+      (when kind
+        (fail who "cannot save ~s: the value holds ~a; only data (numbers, strings, symbols, lists, vectors ...) is saved"
+              n kind)))
+    (let ((text (condition-case (string-append ";; downstroke save data " n "\n" (datum->save-text value) "\n")
+                  (e (save-text) (fail who "cannot save ~s: the value holds ~a" n (save-text-error-message e))))))
+      (when (> (string-length text) (save-data-max-size))
+        (fail who "cannot save ~s: ~a bytes written out, over save-data-max-size (~a)"
+              n (string-length text) (save-data-max-size)))
+      ;; what is written must read back the same
+      (let ((back (condition-case (save-text->datum text)
+                    (e (save-text) (fail who "cannot save ~s: ~a" n (save-text-error-message e))))))
+        (unless (equal? back value)
+          (fail who "cannot save ~s: the value does not read back the same" n)))
+      text))
+
+  ;; A fresh temporary file beside path: (values fd temp). A name that is
+  ;; taken (by another writer, a crash, a planted link) is passed over.
+  (define (create-temp who n path)
+    (let retry ((tries 0))
+      (let ((tmp (temp-path path)))
+        (let ((hook (save-data-write-hook))) (when hook (hook 'create tmp)))
+        (let ((fd (c-create tmp)))
+          (cond ((>= fd 0) (values fd tmp))
+                ((and (= fd (- errno/exist)) (< tries 15)) (retry (+ tries 1)))
+                (else (fail who "cannot save ~s: cannot create ~s: ~a" n tmp (reason fd))))))))
 
   (define (save-data-write! dir name value)
-    (check-dir 'save-data-write! dir)
-    (let* ((n (name-string 'save-data-write! name))
+    (let* ((who 'save-data-write!)
+           (n (name-string who name))
            (path (save-data-path dir name))
-           (tmp (string-append path ".tmp"))
-           (kind (non-data value)))
-      (when kind
-        (fail 'save-data-write! "cannot save ~s: the value holds ~a; only data (numbers, strings, symbols, lists, vectors ...) is saved"
-              n kind))
-      (let ((text (serialize n value)))
-        (when (> (string-length text) (save-data-max-size))
-          (fail 'save-data-write! "cannot save ~s: ~a bytes written out, over save-data-max-size (~a)"
-                n (string-length text) (save-data-max-size)))
-        ;; what is written must read back the same
-        (let ((back (condition-case (read-datum text)
-                      (e (save-data-text) (fail 'save-data-write! "cannot save ~s: ~a" n (text-of e))))))
-          (unless (equal? back value)
-            (fail 'save-data-write! "cannot save ~s: the value does not read back the same" n)))
-        (unless (directory-exists? dir)
-          (fail 'save-data-write! "cannot save ~s: no directory ~s" n dir))
-        (let ((fd (condition-case (file-open tmp (+ open/wronly open/creat open/trunc) #o644)
-                    (e (exn) (fail 'save-data-write! "cannot save ~s: cannot create ~s: ~a" n tmp
-                                   ((condition-property-accessor 'exn 'message "") e)))))
-              (half (quotient (string-length text) 2)))
-          (condition-case
-              (begin
-                (file-write fd (substring text 0 half))
-                (let ((hook (save-data-write-hook))) (when hook (hook 'partial tmp)))
-                (file-write fd (substring text half (string-length text)))
-                (unless (= 0 (posix-fsync fd))
-                  (fail 'save-data-write! "cannot save ~s: fsync of ~s: ~a" n tmp (strerror (errno))))
-                (file-close fd)
-                (set! fd #f))
-            (e (save-data) (when fd (file-close fd)) (delete-file* tmp) (signal e))
-            (e (exn) (when fd (file-close fd)) (delete-file* tmp)
-               (fail 'save-data-write! "cannot save ~s: writing ~s: ~a" n tmp
-                     ((condition-property-accessor 'exn 'message "") e))))
-          (unless (= 0 (posix-rename tmp path))
-            (let ((why (strerror (errno))))
-              (delete-file* tmp)
-              (fail 'save-data-write! "cannot save ~s: renaming ~s to ~s: ~a" n tmp path why)))
-          (sync-directory! dir)
+           (text (file-text who n value)))
+      (let ((bad (path-problem (string-append path (make-string temp-suffix-room #\x)))))
+        (when bad (fail who "cannot save ~s in ~s: ~a" n (shown dir) bad)))
+      (let ((k (c-dir-kind dir)))
+        (unless (= k 1)
+          (fail who "cannot save ~s: no directory ~s (~a)" n dir
+                (cond ((< k 0) (reason k)) (else "it is not a directory")))))
+      (receive (fd tmp) (create-temp who n path)
+        ;; an error from here on removes the temporary file; the old value stays
+        (define (give-up fmt . args)
+          (when fd (c-close fd))
+          (c-unlink tmp)
+          (apply fail who (string-append "cannot save ~s: " fmt) n args))
+        (define (step! r what)
+          (when (< r 0) (give-up "~a ~s: ~a" what tmp (reason r))))
+        (let ((half (quotient (string-length text) 2)))
+          (step! (c-write-all fd text 0 half) "writing")
+          (let ((hook (save-data-write-hook))) (when hook (hook 'partial tmp)))
+          (step! (c-write-all fd text half (string-length text)) "writing")
+          (step! (c-fsync fd) "flushing (fsync)")
+          (let ((r (c-close fd)))
+            (set! fd #f)
+            (step! r "closing"))
+          (let ((r (c-rename tmp path)))
+            (when (< r 0) (give-up "renaming ~s to ~s: ~a" tmp path (reason r))))
+          ;; best effort: some file systems refuse to sync a directory
+          (c-sync-dir dir)
+          (remove-stale-temps! dir (string-append n ".scm.tmp."))
           (void)))))
+
+  ;; Temporary files of this name left by processes that are gone (a
+  ;; crash mid-write); those of a live writer stay.
+  (define (remove-stale-temps! dir prefix)
+    (for-each
+     (lambda (entry)
+       (when (and (> (string-length entry) (string-length prefix))
+                  (string=? prefix (substring entry 0 (string-length prefix))))
+         (let* ((rest (substring entry (string-length prefix)))
+                (dot (substring-index "." rest))
+                (digits (and dot (< 0 dot 10) (substring rest 0 dot)))
+                (pid (and digits (every-digit? digits) (string->number digits))))
+           (when (and (exact-integer? pid) (not (= pid (current-process-id))) (c-process-gone? pid))
+             (c-unlink (string-append dir "/" entry))))))
+     (condition-case (directory dir #t) (e () '()))))
+
+  (define (every-digit? s)
+    (let loop ((i 0))
+      (or (= i (string-length s)) (and (char-numeric? (string-ref s i)) (loop (+ i 1))))))
 
   ;;; Reading.
 
   (define no-default (list 'no-default))
 
+  ;; The file's text, or (values #f what-is-wrong kind) with kind one of
+  ;; missing, corrupt (the default stands in), error (it does not).
+  (define (file-text-of path limit)
+    (let ((fd (c-open-read path)))
+      (cond ((< fd 0)
+             (cond ((memv (- fd) (list errno/noent errno/notdir)) (values #f "no file" 'missing))
+                   ((= (- fd) errno/loop) (values #f "it is a symbolic link, which is not followed" 'corrupt))
+                   ((= (- fd) errno/nametoolong) (values #f (reason fd) 'corrupt))
+                   (else (values #f (reason fd) 'error))))
+            (else
+             (let ((kind (c-fd-kind fd)) (size (c-fd-size fd)))
+               (define (done . results) (c-close fd) (apply values results))
+               (cond ((< kind 0) (done #f (reason kind) 'error))
+                     ((= kind 1) (done #f "it is a directory" 'corrupt))
+                     ((not (= kind 0)) (done #f "it is not a regular file (a FIFO, device or socket)" 'corrupt))
+                     ((> size limit)
+                      (done #f (sprintf "~a bytes, over save-data-max-size (~a)" (inexact->exact size) limit)
+                            'corrupt))
+                     (else
+                      ;; room for one byte more than fstat said, which
+                      ;; tells a file that grows while it is read
+                      (let* ((room (+ (inexact->exact size) 1)) (buf (make-string room)))
+                        (let loop ((got 0))
+                          (let ((r (if (= got room) 0 (c-read fd buf got (- room got)))))
+                            (cond ((< r 0) (done #f (reason r) 'error))
+                                  ((> r 0) (loop (+ got r)))
+                                  ((= got room) (done #f "it grew while it was read" 'corrupt))
+                                  (else (done (substring buf 0 got) #f #f)))))))))))))
+
   (define (save-data-read dir name #!optional (default no-default))
     (check-dir 'save-data-read dir)
-    (let* ((n (name-string 'save-data-read name))
+    (let* ((who 'save-data-read)
+           (n (name-string who name))
            (path (save-data-path dir name))
            (corrupt (lambda (what)
                       (if (eq? default no-default)
-                          (fail 'save-data-read "the save data ~s (~s) is corrupt: ~a" n path what)
-                          default))))
-      (cond ((not (file-exists? path))
-             (if (eq? default no-default)
-                 (fail 'save-data-read "no save data ~s (no file ~s)" n path)
-                 default))
-            ((directory-exists? path) (corrupt "it is a directory"))
-            (else
-             (let ((size (file-size path)) (limit (save-data-max-size)))
-               (if (> size limit)
-                   (corrupt (sprintf "~a bytes, over save-data-max-size (~a)" size limit))
-                   (let ((text (condition-case
-                                   (call-with-input-file path (lambda (p) (read-string (+ limit 1) p))
-                                     #:binary)
-                                 (e (exn) (fail 'save-data-read "cannot read the save data ~s (~s): ~a"
-                                                n path ((condition-property-accessor 'exn 'message "") e))))))
-                     (cond ((eof-object? text) (corrupt "the file is empty"))
-                           ((> (string-length text) limit)
-                            (corrupt (sprintf "over save-data-max-size (~a)" limit)))
-                           (else
-                            (condition-case (read-datum text)
-                              (e (save-data-text) (corrupt (text-of e)))))))))))))
+                          (fail who "the save data ~s (~s) is corrupt: ~a" n (shown path) what)
+                          default)))
+           (bad (path-problem path)))
+      (if bad
+          (if (eq? default no-default)
+              (fail who "cannot read the save data ~s in ~s: ~a" n (shown dir) bad)
+              default)
+          (receive (text what kind) (file-text-of path (save-data-max-size))
+            (case kind
+              ((missing) (if (eq? default no-default)
+                             (fail who "no save data ~s (no file ~s)" n path)
+                             default))
+              ((corrupt) (corrupt what))
+              ((error) (fail who "cannot read the save data ~s (~s): ~a" n path what))
+              (else
+               (if (string=? text "")
+                   (corrupt "the file is empty")
+                   (condition-case (save-text->datum text)
+                     (e (save-text) (corrupt (save-text-error-message e)))))))))))
 
-  (define (save-data-exists? dir name) (and (file-exists? (save-data-path dir name)) #t))
+  ;; #t when a regular file (not a link) holds the name; a directory the
+  ;; system cannot take holds nothing.
+  (define (save-data-exists? dir name)
+    (let ((path (save-data-path dir name)))
+      (and (not (path-problem path)) (= 0 (c-path-kind path)))))
 
   (define (save-data-delete! dir name)
-    (delete-file* (save-data-path dir name))
-    (void)))
+    (let ((path (save-data-path dir name)))
+      (let ((bad (path-problem path)))
+        (when bad (fail 'save-data-delete! "cannot delete the save data in ~s: ~a" (shown dir) bad)))
+      (let ((r (c-unlink path)))
+        (unless (or (= r 0) (= r (- errno/noent)))
+          (fail 'save-data-delete! "cannot delete the save data ~s: ~a" path (reason r))))
+      (void))))

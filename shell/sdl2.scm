@@ -86,6 +86,7 @@
           )
 
   (foreign-declare #<<EOF
+#include <math.h>
 #include <SDL.h>
 #include <SDL_image.h>
 
@@ -166,17 +167,111 @@ static void downstroke_letterbox(SDL_Renderer *r, int lw, int lh) {
   SDL_RenderSetLogicalSize(r, lw, lh);
 }
 
-/* A rect argument: x < 0 in `use` means NULL (the whole target). */
+/* Where every rect enters SDL. Its numbers arrive as doubles (whatever
+   real a game computed: huge, infinite, NaN) and leave as the ints SDL
+   takes; a span with nothing in it, or a NaN, is not drawn.
+
+   A filled or outlined rect is one colour, so cutting it changes nothing
+   that can be seen: each span [p, p + size) is floored at both ends and
+   cut to [-limit, limit], limit at most 2^23 (SDL turns rects into
+   floats, which hold every integer below 2^24) and at most 2^29 / scale
+   (SDL's software renderer multiplies by the renderer's scale in ints),
+   both far outside any window. */
+/* floor(v) for v well inside the int range (most rects are whole already) */
+static int ds_floor(double v) {
+  int i = (int)v;
+  return (double)i > v ? i - 1 : i;
+}
+
+static int ds_span(double p, double size, double limit, int *lo, int *len) {
+  double a = p, b = p + size;
+  int ia, ib;
+  if (!(a < b)) return 0;
+  if (a < -limit) a = -limit;
+  if (b > limit) b = limit;
+  ia = ds_floor(a); ib = ds_floor(b);
+  if (ia >= ib) return 0;
+  *lo = ia; *len = ib - ia;
+  return 1;
+}
+
+static double ds_dest_limit(SDL_Renderer *r) {
+  float sx = 1.0f, sy = 1.0f;
+  double s;
+  SDL_RenderGetScale(r, &sx, &sy);
+  s = sx > sy ? sx : sy;
+  if (!(s > 1.0)) s = 1.0;
+  return s > 64.0 ? 536870912.0 / s : 8388608.0;
+}
+
+/* Fill (which 0) or outline (1) a rect, or the whole target. */
+static int downstroke_rect(SDL_Renderer *r, int which, int whole,
+                           double x, double y, double w, double h) {
+  SDL_Rect rc;
+  double limit = ds_dest_limit(r);
+  if (!whole && !(ds_span(x, w, limit, &rc.x, &rc.w) && ds_span(y, h, limit, &rc.y, &rc.h)))
+    return 0;
+  return which ? SDL_RenderDrawRect(r, whole ? NULL : &rc)
+               : SDL_RenderFillRect(r, whole ? NULL : &rc);
+}
+
+/* A copy stretches its source over its destination, so cutting the
+   destination alone would squeeze the picture. A copy near the view (no
+   edge more than DS_REACH px beyond it) goes to SDL as it is; for any
+   other the answer is 2, and render-copy! cuts it on whole source pixels
+   first. A turned copy that far is not drawn (answer 0): its picture
+   cannot be cut that way. */
+#define DS_REACH 16384.0
+
+static int ds_copy_rect(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *dst,
+                        double angle, int flip) {
+  if (flip == 0 && angle == 0.0) return SDL_RenderCopy(r, t, src, dst);
+  return SDL_RenderCopyEx(r, t, src, dst, angle, NULL, (SDL_RendererFlip)flip);
+}
+
+/* A copy; use_src / use_dst false: NULL (the whole texture / target).
+   A source is cut to +-2^24, beyond any texture. */
 static int downstroke_copy(SDL_Renderer *r, SDL_Texture *t, int use_src,
-                           int sx, int sy, int sw, int sh, int use_dst,
-                           int dx, int dy, int dw, int dh,
+                           double sx, double sy, double sw, double sh, int use_dst,
+                           double dx, double dy, double dw, double dh,
                            double angle, int hflip, int vflip) {
+  SDL_Rect src, dst, vp;
+  int flip = (hflip ? SDL_FLIP_HORIZONTAL : 0) | (vflip ? SDL_FLIP_VERTICAL : 0);
+  double ax = dx, bx = dx + dw, ay = dy, by = dy + dh;
+  if (use_src && !(ds_span(sx, sw, 16777216.0, &src.x, &src.w)
+                   && ds_span(sy, sh, 16777216.0, &src.y, &src.h)))
+    return 0;
+  if (!use_dst) return ds_copy_rect(r, t, use_src ? &src : NULL, NULL, angle, flip);
+  if (!(ax < bx) || !(ay < by)) return 0;
+  SDL_RenderGetViewport(r, &vp);
+  if (!(ax >= -DS_REACH && bx <= vp.w + DS_REACH && ay >= -DS_REACH && by <= vp.h + DS_REACH))
+    return angle == 0.0 ? 2 : 0;
+  dst.x = ds_floor(ax); dst.y = ds_floor(ay);
+  dst.w = ds_floor(bx) - dst.x; dst.h = ds_floor(by) - dst.y;
+  if (dst.w <= 0 || dst.h <= 0) return 0;
+  return ds_copy_rect(r, t, use_src ? &src : NULL, &dst, angle, flip);
+}
+
+/* The usual rect and copy, whose numbers render-fill-rect!, render-draw-rect!
+   and render-copy! found to be small fixnums near the view: as they are. */
+static int downstroke_rect_ints(SDL_Renderer *r, int which, int x, int y, int w, int h) {
+  SDL_Rect rc = { x, y, w, h };
+  return which ? SDL_RenderDrawRect(r, &rc) : SDL_RenderFillRect(r, &rc);
+}
+
+static int downstroke_copy_ints(SDL_Renderer *r, SDL_Texture *t, int use_src,
+                                int sx, int sy, int sw, int sh, int dx, int dy, int dw, int dh,
+                                double angle, int hflip, int vflip) {
   SDL_Rect src = { sx, sy, sw, sh }, dst = { dx, dy, dw, dh };
   int flip = (hflip ? SDL_FLIP_HORIZONTAL : 0) | (vflip ? SDL_FLIP_VERTICAL : 0);
-  if (flip == 0 && angle == 0.0)
-    return SDL_RenderCopy(r, t, use_src ? &src : NULL, use_dst ? &dst : NULL);
-  return SDL_RenderCopyEx(r, t, use_src ? &src : NULL, use_dst ? &dst : NULL,
-                          angle, NULL, (SDL_RendererFlip)flip);
+  return ds_copy_rect(r, t, use_src ? &src : NULL, &dst, angle, flip);
+}
+
+/* The view in the renderer's logical pixels. */
+static void downstroke_view(SDL_Renderer *r, int *w, int *h) {
+  SDL_Rect vp;
+  SDL_RenderGetViewport(r, &vp);
+  *w = vp.w; *h = vp.h;
 }
 EOF
 )
@@ -599,9 +694,12 @@ EOF
          p (location sx) (location sy))
         (values sx sy))))
 
+  ;; SDL's scale is a C float: from about 1e-38 to 3.4e38.
+  (define (float-scale? v) (and (real? v) (finite? v) (<= 1e-38 v 3e38)))
+
   (define (render-scale-set! r sx sy)
-    (unless (and (real? sx) (real? sy) (positive? sx) (positive? sy) (finite? sx) (finite? sy))
-      (error 'render-scale-set! "the scale must be two positive finite numbers" sx sy))
+    (unless (and (float-scale? sx) (float-scale? sy))
+      (error 'render-scale-set! "the scale must be two positive finite numbers a float holds" sx sy))
     (check-status 'render-scale-set! "SDL_RenderSetScale"
                   ((foreign-lambda int "SDL_RenderSetScale" c-pointer float float)
                    (live-renderer 'render-scale-set! r) (exact->inexact sx) (exact->inexact sy))))
@@ -640,57 +738,44 @@ EOF
                   ((foreign-lambda int "SDL_RenderClear" c-pointer)
                    (live-renderer 'render-clear! r))))
 
+  ;; A rect's numbers as the C doubles downstroke_rect and downstroke_copy
+  ;; turn into SDL's ints (above): any real, bignums and fractions included.
+  (define-inline (c-real v) (if (or (fixnum? v) (flonum? v)) v (exact->inexact v)))
+
   (define rect-op
-    (foreign-lambda* int ((c-pointer r) (int which) (bool whole) (int x) (int y) (int w) (int h))
-      "SDL_Rect rc = { x, y, w, h };
-       C_return(which ? SDL_RenderDrawRect((SDL_Renderer*)r, whole ? NULL : &rc)
-                      : SDL_RenderFillRect((SDL_Renderer*)r, whole ? NULL : &rc));"))
+    (foreign-lambda int "downstroke_rect" c-pointer int bool double double double double))
+  (define rect-op-ints
+    (foreign-lambda int "downstroke_rect_ints" c-pointer int int int int int))
 
-;; Destination rects reach SDL as C ints, which would wrap a coordinate
-  ;; past 2^31 back onto the screen (an entity at x = 2^32 + 10 drawn at
-  ;; 10) and cannot hold a bignum at all. Every destination is therefore
-  ;; cut to +-2^24 px, far outside any window even when scaled: edges
-  ;; beyond it are moved to it, and a rect wholly beyond it is not drawn.
-  ;; (values x y w h), or #f to draw nothing.
-  (define dest-limit (expt 2 24))
+  ;; Fixnum edges within +-near-limit: passed on as they are (a map's
+  ;; tiles, sprites and boxes near the view, hundreds a frame, cost what
+  ;; they cost before any of this); the rest go through the cuts above.
+  ;; The same number as DS_REACH.
+  (define near-limit 16384)
 
-  (define (dest-span p size)
-    (let ((lo (max p (- dest-limit))) (hi (min (+ p size) dest-limit)))
-      (and (< lo hi) (cons (exact-int lo) (exact-int hi)))))
-
-  (define (exact-int v) (let ((i (floor v))) (if (exact? i) i (inexact->exact i))))
-
-  (define (clip-dest rect)
-    (let ((sx (dest-span (rect-x rect) (rect-w rect)))
-          (sy (dest-span (rect-y rect) (rect-h rect))))
-      (and sx sy (list (car sx) (car sy) (- (cdr sx) (car sx)) (- (cdr sy) (car sy))))))
-
-  ;; The usual rect: fixnum edges inside the limit, passed on as it is
-  ;; (drawing a map makes hundreds of these a frame; only the rest are cut).
-  (define (dest-in-range? rect)
-    (let ((x (rect-x rect)) (y (rect-y rect)) (w (rect-w rect)) (h (rect-h rect)))
-      (and (fixnum? x) (fixnum? y) (fixnum? w) (fixnum? h)
-           (fx> w 0) (fx> h 0)
-           (fx< (fx- 0 dest-limit) x) (fx< (fx+ x w) dest-limit)
-           (fx< (fx- 0 dest-limit) y) (fx< (fx+ y h) dest-limit))))
+  (define-inline (near-span? p size)
+    (and (fixnum? p) (fixnum? size) (fx>= p (fxneg near-limit)) (fx<= p near-limit)
+         (fx> size 0) (fx<= size near-limit) (fx<= (fx+ p size) near-limit)))
 
   (define (do-rect who call which r rect)
-    (let ((p (live-renderer who r)))
-      (cond ((not rect) (check-status who call (rect-op p which #t 0 0 0 0)))
-            ((dest-in-range? rect)
-             (check-status who call (rect-op p which #f (rect-x rect) (rect-y rect)
-                                             (rect-w rect) (rect-h rect))))
-            ((clip-dest rect)
-             => (lambda (d)
-                  (check-status who call (rect-op p which #f (car d) (cadr d) (caddr d) (cadddr d))))))))
+    (check-status who call
+                  (if rect
+                      (let ((x (rect-x rect)) (y (rect-y rect)) (w (rect-w rect)) (h (rect-h rect)))
+                        (if (and (near-span? x w) (near-span? y h))
+                            (rect-op-ints (live-renderer who r) which x y w h)
+                            (rect-op (live-renderer who r) which #f (c-real x) (c-real y) (c-real w) (c-real h))))
+                      (rect-op (live-renderer who r) which #t 0. 0. 0. 0.))))
 
   ;; rect: a rect, or #f for the whole target.
   (define (render-fill-rect! r rect) (do-rect 'render-fill-rect! "SDL_RenderFillRect" 0 r rect))
   (define (render-draw-rect! r rect) (do-rect 'render-draw-rect! "SDL_RenderDrawRect" 1 r rect))
 
   (define sdl-copy
-    (foreign-lambda int "downstroke_copy" c-pointer c-pointer bool int int int int
-                    bool int int int int double bool bool))
+    (foreign-lambda int "downstroke_copy" c-pointer c-pointer bool double double double double
+                    bool double double double double double bool bool))
+  (define sdl-copy-ints
+    (foreign-lambda int "downstroke_copy_ints" c-pointer c-pointer bool int int int int
+                    int int int int double bool bool))
 
   ;; (render-copy! renderer texture src dst #!key flip angle): src and dst
   ;; are rects or #f (the whole texture / target); flip is a list of the
@@ -698,23 +783,121 @@ EOF
   ;; the centre of dst.
   (define/keywords (render-copy! r t src dst #!key (flip '()) (angle 0))
     (let ((rp (live-renderer 'render-copy! r))
-          (tp (live-texture 'render-copy! t)))
+          (tp (live-texture 'render-copy! t))
+          (h? (and (memq 'horizontal flip) #t))
+          (v? (and (memq 'vertical flip) #t)))
       (unless (eq? (texture-renderer t) r)
         (error 'render-copy! "the texture belongs to another renderer" t))
-      (define (copy! x y w h)
-        (check-status
-         'render-copy! (if (and (null? flip) (zero? angle)) "SDL_RenderCopy" "SDL_RenderCopyEx")
-         (sdl-copy rp tp
-                   (and src #t)
-                   (if src (rect-x src) 0) (if src (rect-y src) 0)
-                   (if src (rect-w src) 0) (if src (rect-h src) 0)
-                   (and dst #t) x y w h
-                   (exact->inexact angle)
-                   (and (memq 'horizontal flip) #t)
-                   (and (memq 'vertical flip) #t))))
-      (cond ((not dst) (copy! 0 0 0 0))
-            ((dest-in-range? dst) (copy! (rect-x dst) (rect-y dst) (rect-w dst) (rect-h dst)))
-            ((clip-dest dst) => (lambda (d) (apply copy! d))))))
+      (unless (and (real? angle) (or (exact? angle) (finite? angle)))
+        (error 'render-copy! "angle: must be a finite number of degrees" angle))
+      (let ((call (if (and (null? flip) (zero? angle)) "SDL_RenderCopy" "SDL_RenderCopyEx"))
+            (degrees (exact->inexact angle)))
+        (if dst
+            (let ((dx (rect-x dst)) (dy (rect-y dst)) (dw (rect-w dst)) (dh (rect-h dst)))
+              (if (and (near-span? dx dw) (near-span? dy dh))
+                  (if src
+                      (let ((sx (rect-x src)) (sy (rect-y src)) (sw (rect-w src)) (sh (rect-h src)))
+                        (if (and (near-span? sx sw) (near-span? sy sh))
+                            ;; the usual copy
+                            (check-status 'render-copy! call
+                                          (sdl-copy-ints rp tp #t sx sy sw sh dx dy dw dh degrees h? v?))
+                            (copy-beyond! r t rp tp src dst h? v? angle call degrees)))
+                      (check-status 'render-copy! call
+                                    (sdl-copy-ints rp tp #f 0 0 0 0 dx dy dw dh degrees h? v?)))
+                  (copy-beyond! r t rp tp src dst h? v? angle call degrees)))
+            (check-status 'render-copy! call
+                          (if src
+                              (sdl-copy rp tp #t (c-real (rect-x src)) (c-real (rect-y src))
+                                        (c-real (rect-w src)) (c-real (rect-h src))
+                                        #f 0 0 0 0 degrees h? v?)
+                              (sdl-copy rp tp #f 0 0 0 0 #f 0 0 0 0 degrees h? v?)))))))
+
+  ;; A copy whose numbers are not all small fixnums: downstroke_copy takes
+  ;; it as doubles when they are fixnums and draws it when it is near the
+  ;; view; anything else is cut by copy-far!.
+  (define (copy-beyond! r t rp tp src dst h? v? angle call degrees)
+    (let ((status (if (and (fixnum? (rect-x dst)) (fixnum? (rect-y dst))
+                           (fixnum? (rect-w dst)) (fixnum? (rect-h dst)))
+                      (sdl-copy rp tp (and src #t)
+                                (if src (c-real (rect-x src)) 0) (if src (c-real (rect-y src)) 0)
+                                (if src (c-real (rect-w src)) 0) (if src (c-real (rect-h src)) 0)
+                                #t (rect-x dst) (rect-y dst) (rect-w dst) (rect-h dst) degrees h? v?)
+                      2)))
+      (if (eqv? status 2)
+          (copy-far! r t rp tp src dst h? v? angle call)
+          (check-status 'render-copy! call status))))
+
+  (define (whole-texture t) (receive (w h) (texture-size t) (make-rect 0 0 w h)))
+
+  ;;; A copy far beyond the view (downstroke_copy answered 2, or its
+  ;;; numbers are not fixnums): cut on whole source pixels, in exact
+  ;;; arithmetic, so that a sprite 1e308 px wide shows, exactly where they
+  ;;; fall, the texels the view sees. Along an axis where a texel is at
+  ;;; most `texel-reach` px, one copy of the texels seen, whose edges lie
+  ;;; within a texel of the view; where a texel is larger, each texel seen
+  ;;; alone, its destination cut to the view (a texel is one colour, so
+  ;;; nothing is squeezed). A turned copy, a NaN or an infinity in the
+  ;;; destination is not drawn. Half of DS_REACH: every piece is near the
+  ;;; view for downstroke_copy.
+  (define texel-reach 8192)
+
+  (define (exact-coordinate v)
+    (cond ((exact? v) v)
+          ((and (flonum? v) (finite? v)) (inexact->exact v))
+          (else #f)))
+
+  ;; One axis: destination [a, b), source texels [s, s + n), mirrored when
+  ;; flip?, seen through [v0, v1]: a list of (s0 s1 d0 d1), exact.
+  (define (texel-pieces a b s n flip? v0 v1)
+    (let ((lo (max a v0)) (hi (min b v1)))
+      (if (or (>= lo hi) (<= n 0))
+          '()
+          (let* ((k (/ (- b a) n))                       ; px per texel
+                 (at (lambda (t) (+ a (* k (if flip? (- (+ s n) t) (- t s))))))
+                 (u (lambda (x) (+ s (/ (- x a) k))))
+                 (t0 (max s (floor (if flip? (- (+ s s n) (u hi)) (u lo)))))
+                 (t1 (min (+ s n) (ceiling (if flip? (- (+ s s n) (u lo)) (u hi)))))
+                 (t1 (if (<= t1 t0) (+ t0 1) t1))
+                 (piece (lambda (t0 t1)
+                          (let ((d0 (at (if flip? t1 t0))) (d1 (at (if flip? t0 t1))))
+                            (list t0 t1 d0 d1)))))
+            (if (<= k texel-reach)
+                (list (piece t0 t1))
+                (let loop ((t t0) (out '()))
+                  (if (>= t t1)
+                      (reverse out)
+                      (let ((p (piece t (+ t 1))))
+                        (loop (+ t 1)
+                              (cons (list (car p) (cadr p) (max (caddr p) v0) (min (cadddr p) v1))
+                                    out))))))))))
+
+  (define (copy-far! r t rp tp src dst h? v? angle call)
+    (let ((x (exact-coordinate (rect-x dst))) (y (exact-coordinate (rect-y dst)))
+          (w (exact-coordinate (rect-w dst))) (h (exact-coordinate (rect-h dst)))
+          (s (or src (whole-texture t))))
+      (when (and x y w h (zero? angle))
+        (receive (vw vh) (render-view-size r)
+          (let ((xs (texel-pieces x (+ x w) (rect-x s) (rect-w s) h? -1 (+ vw 1)))
+                (ys (texel-pieces y (+ y h) (rect-y s) (rect-h s) v? -1 (+ vh 1))))
+            (for-each
+             (lambda (px)
+               (for-each
+                (lambda (py)
+                  (let ((x0 (floor (caddr px))) (x1 (floor (cadddr px)))
+                        (y0 (floor (caddr py))) (y1 (floor (cadddr py))))
+                    (when (and (< x0 x1) (< y0 y1))
+                      (check-status 'render-copy! call
+                                    (sdl-copy rp tp #t (car px) (car py)
+                                              (- (cadr px) (car px)) (- (cadr py) (car py))
+                                              #t x0 y0 (- x1 x0) (- y1 y0) 0. h? v?)))))
+                ys))
+             xs))))))
+
+  (define (render-view-size r)
+    (let-location ((w int 0) (h int 0))
+      ((foreign-lambda void "downstroke_view" c-pointer (c-pointer int) (c-pointer int))
+       (live-renderer 'render-copy! r) (location w) (location h))
+      (values w h)))
 
   (define (render-present! r)
     ((foreign-lambda void "SDL_RenderPresent" c-pointer) (live-renderer 'render-present! r)))

@@ -2,8 +2,9 @@
 ;;; negative coordinates, zero-size bodies, non-finite numbers, very long
 ;;; runs. Exact assertions; documented in docs/performance.org.
 
-(import scheme (chicken base) (chicken gc) (chicken string) (chicken format)
-        (downstroke test) (downstroke entity) (downstroke tilemap)
+(import scheme (chicken base) (chicken gc) (chicken string) (chicken format) (chicken file)
+        (chicken pathname) srfi-4
+        (downstroke test) (downstroke entity) (downstroke tilemap) (downstroke tween)
         (downstroke scene) (downstroke physics) (downstroke engine) (downstroke pipeline))
 
 (define (ex-ent . plist) (plist->entity plist))
@@ -164,6 +165,117 @@
                       (resolve-entity-collisions crowd method))))
       '(#:x #:y #:width #:height)))
    '(all-pairs spatial-hash)))
+
+;; Each number here is finite; what overflows is a sum, a product or a
+;; quotient made later. Each is refused where it enters, naming where it
+;; came from, or computed as its true value. (The drawing cases are in
+;; sprites-test.scm, renderer-test.scm and sdl2-test.scm.)
+(define (ex-message thunk)
+  (handle-exceptions exn (error-text exn) (thunk) "no error"))
+
+(define (ex-says? text . parts)
+  (let loop ((ps parts)) (or (null? ps) (and (substring-index (car ps) text) (loop (cdr ps))))))
+
+(test-group "finite values that overflow later: tweens"
+  ;; (x active?) after stepping a tween of e's #:x by each dt of dts
+  (define (x-after e dts . options)
+    (let loop ((t (apply make-tween e options)) (e e) (dts dts))
+      (if (null? dts)
+          (list (entity-ref e #:x) (tween-active? t))
+          (receive (t e) (tween-step t e (car dts)) (loop t e (cdr dts))))))
+  (define star (ex-ent #:type 'star #:x 0))
+  ;; 16 ms hold 2^1078 runs of 5e-324 (= 2^-1074) ms: 16 / 5e-324 is +inf.0
+  (test "a run of 5e-324 ms repeating forever, stepped 16 ms twice: 2^1078 whole runs each, x back at its start, still running"
+        '(0 #t) (x-after star '(16 16) props: '((#:x . 10)) duration: 5e-324 repeat: -1))
+  (test "with yoyo?, 2^52 + 1 runs of 5e-324 ms (counted exactly) end on a backward run, at the target"
+        '(10 #t) (x-after star (list (* (+ (expt 2 52) 1) 5e-324)) props: '((#:x . 10)) duration: 5e-324
+                          repeat: -1 yoyo?: #t))
+  ;; 2^-1020 ms is 2^54 units of 5e-324: 6004799503160661 runs of 3 units, 1 unit left
+  (test "runs counted beyond 2^52 leave the exact remainder: a third of a run" (/ 10. 3)
+        (car (x-after star (list (expt 2. -1020)) props: '((#:x . 10)) duration: (* 3 5e-324) repeat: -1)))
+  (let ((far (ex-ent #:type 'star #:x -1e308)))
+    (test "a tween of #:x from -1e308 to 1e308: halfway is 0, not +inf.0" '(0. #t)
+          (x-after far '(50) props: '((#:x . 1e308)) duration: 100))
+    (test "a quarter of the way is -5e307" '(-5e307 #t)
+          (x-after far '(25) props: '((#:x . 1e308)) duration: 100))
+    (test "the end is the target exactly" '(1e308 #f)
+          (x-after far '(100) props: '((#:x . 1e308)) duration: 100)))
+  (test "exact ends still give exact values on the way" '(5/2 #t)
+        (x-after star '(25) props: '((#:x . 10)) duration: 100))
+  (test-assert "an easing that overshoots past the largest flonum is an error naming the entity and the key"
+               (ex-says? (ex-message (lambda () (x-after (ex-ent #:type 'star #:id 7 #:x 0) '(75)
+                                                         props: '((#:x . 1.5e308)) duration: 100
+                                                         ease: (lambda (u) (* 2 u)))))
+                         "entity star 7" "#:x" "1.5e+308" "not a finite number")))
+
+(test-group "finite values that overflow later: the camera"
+  (test "make-camera zoom: +inf.0 is refused, naming the keyword"
+        "make-camera: zoom: +inf.0 must be a positive finite number"
+        (ex-message (lambda () (make-camera zoom: +inf.0))))
+  (test "a zoom beyond SDL's float scale is refused too"
+        "make-camera: zoom: 1e+300 must be from 1/64 to 64"
+        (ex-message (lambda () (make-camera zoom: 1e300))))
+  (test "NaN bounds are refused"
+        "make-camera: bounds: (0 +nan.0 320 240) must be 'map, #f or (x y width height) of finite numbers"
+        (ex-message (lambda () (make-camera bounds: (list 0 +nan.0 320 240)))))
+  (test "an infinite position is refused"
+        "make-camera: x: -inf.0 must be a finite number"
+        (ex-message (lambda () (make-camera x: -inf.0))))
+  (test "camera-shake of +inf.0 is refused"
+        "camera-shake: amplitude +inf.0 must be a positive finite number"
+        (ex-message (lambda () (camera-shake (make-camera) +inf.0))))
+  (test "a shake of 1e308 plays out: the camera is drawn from whole pixels, then settles" '(#t 0)
+        (let loop ((c (camera-shake (make-camera bounds: #f) 1e308)) (f 0) (whole? #t))
+          (if (camera-shaking? c)
+              (let ((c (camera-follow c #f 320 240 #f)))
+                (loop c (+ f 1) (and whole? (exact-integer? (camera-x c)))))
+              (list whole? (camera-x (camera-follow c #f 320 240 #f))))))
+  (test-assert "following a target whose #:x is NaN names the target and the key"
+               (ex-says? (ex-message (lambda () (camera-follow (make-camera) (ex-ent #:type 'hero #:x +nan.0) 320 240 #f)))
+                         "entity hero" "#:x" "+nan.0"))
+  (test-assert "a target whose centre is past the largest flonum names the target"
+               (ex-says? (ex-message (lambda () (camera-follow (make-camera bounds: #f)
+                                                               (ex-ent #:type 'hero #:x 1.7e308 #:width 1e308)
+                                                               320 240 #f)))
+                         "camera-follow" "entity hero" "x")))
+
+(test-group "finite values that overflow later: maps"
+  (let* ((dir (create-temporary-directory))
+         (write-map (lambda (name group-attrs layer-attrs)
+                      (let ((path (make-pathname dir name)))
+                        (with-output-to-file path
+                          (lambda ()
+                            (print "<?xml version=\"1.0\"?><map version=\"1.10\" orientation=\"orthogonal\" width=\"2\" height=\"1\" tilewidth=\"8\" tileheight=\"8\">")
+                            (print "<group id=\"1\" name=\"far\" " group-attrs ">")
+                            (print "<layer id=\"2\" name=\"ground\" width=\"2\" height=\"1\" " layer-attrs "><data encoding=\"csv\">0,0</data></layer>")
+                            (print "</group></map>")))
+                        path))))
+    (for-each
+     (lambda (attr)
+       (let ((path (write-map (string-append attr ".tmx")
+                              (string-append attr "=\"1e308\"") (string-append attr "=\"1e308\""))))
+         (test-assert (sprintf "a group and its layer both with ~a 1e308: refused at load, naming the file, the layer and ~a" attr attr)
+                      (ex-says? (ex-message (lambda () (load-tilemap path)))
+                                path "layer \"ground\"" attr "not a finite number"))))
+     '("offsetx" "offsety" "parallaxx" "parallaxy"))
+    (let ((path (make-pathname dir "far.tmj")))
+      (with-output-to-file path
+        (lambda ()
+          (print "{\"type\":\"map\",\"version\":\"1.10\",\"orientation\":\"orthogonal\",\"renderorder\":\"right-down\",\"width\":2,\"height\":1,\"tilewidth\":8,\"tileheight\":8,\"infinite\":false,\"tilesets\":[],")
+          (print " \"layers\":[{\"type\":\"group\",\"id\":1,\"name\":\"far\",\"parallaxx\":1e308,\"visible\":true,\"opacity\":1,\"x\":0,\"y\":0,")
+          (print "  \"layers\":[{\"type\":\"tilelayer\",\"id\":2,\"name\":\"ground\",\"width\":2,\"height\":1,\"parallaxx\":1e308,\"data\":[0,0],\"visible\":true,\"opacity\":1,\"x\":0,\"y\":0}]}]}")))
+      (test-assert "the same in a JSON map: refused at load, naming the file, the layer and parallaxx"
+                   (ex-says? (ex-message (lambda () (load-tilemap path)))
+                             path "layer \"ground\"" "parallaxx" "not a finite number")))
+    (test "one of the two alone loads, its value kept" 1e308
+          (layer-offset-x (car (tilemap-layers (load-tilemap (write-map "one.tmx" "offsetx=\"1e308\"" ""))))))
+    (delete-directory dir #t))
+  (test "make-layer refuses an infinite offset, naming the layer and the keyword"
+        "make-layer: layer \"sky\": offset-x: +inf.0 must be a finite number"
+        (ex-message (lambda () (make-layer "sky" 1 1 (u32vector 0) offset-x: +inf.0))))
+  (test "... and a NaN parallax"
+        "make-layer: layer \"sky\": parallax-y: +nan.0 must be a finite number"
+        (ex-message (lambda () (make-layer "sky" 1 1 (u32vector 0) parallax-y: +nan.0)))))
 
 (test-group "a body resting on a floor for 100,000 frames"
   (for-each

@@ -790,11 +790,23 @@
         (attr-number ctx node axis 0)
         0))
 
+  ;; A layer's own offsets and parallax factors folded into its groups':
+  ;; each is a finite number, but a sum or product of them may not be
+  ;; (a group and its layer both offset by 1e308), and the map would then
+  ;; fail in its first frame: an error naming the file and the layer.
   (define (compose-inherited ctx node inh)
-    (make-inherited (+ (in-offset-x inh) (attr-number ctx node 'offsetx (legacy-offset ctx node 'x)))
-                    (+ (in-offset-y inh) (attr-number ctx node 'offsety (legacy-offset ctx node 'y)))
-                    (* (in-parallax-x inh) (attr-number ctx node 'parallaxx 1))
-                    (* (in-parallax-y inh) (attr-number ctx node 'parallaxy 1))
+    (define (fold attr own combine how inherited)
+      (let ((v (combine inherited own)))
+        (if (finite? v)
+            v
+            (tmx-error (ctx-file ctx) "~a: ~a ~s ~a its groups' ~s is ~s, not a finite number"
+                       (ctx-what ctx) attr own how inherited v))))
+    (make-inherited (fold 'offsetx (attr-number ctx node 'offsetx (legacy-offset ctx node 'x))
+                          + "added to" (in-offset-x inh))
+                    (fold 'offsety (attr-number ctx node 'offsety (legacy-offset ctx node 'y))
+                          + "added to" (in-offset-y inh))
+                    (fold 'parallaxx (attr-number ctx node 'parallaxx 1) * "times" (in-parallax-x inh))
+                    (fold 'parallaxy (attr-number ctx node 'parallaxy 1) * "times" (in-parallax-y inh))
                     (* (in-opacity inh) (attr-number ctx node 'opacity 1))
                     (and (in-visible? inh) (attr-bool ctx node 'visible #t))))
 

@@ -109,13 +109,13 @@
         (cm-xy (camera-follow (make-camera zoom: 1/2) (cm-target 192 192) 320 240 #f))))
 
 (test-group "camera: settings are checked"
-  (test "zoom: 0" "make-camera: zoom: 0 must be a positive number"
+  (test "zoom: 0" "make-camera: zoom: 0 must be a positive finite number"
         (cm-message (lambda () (make-camera zoom: 0))))
   (test "follow-rate: 2" "make-camera: follow-rate: 2 must be a number above 0 and at most 1"
         (cm-message (lambda () (make-camera follow-rate: 2))))
-  (test "a deadzone that is not a pair" "make-camera: deadzone: 64 must be #f or (width . height), both >= 0"
+  (test "a deadzone that is not a pair" "make-camera: deadzone: 64 must be #f or (width . height), both finite and >= 0"
         (cm-message (lambda () (make-camera deadzone: 64))))
-  (test "bounds of three numbers" "make-camera: bounds: (1 2 3) must be 'map, #f or (x y width height)"
+  (test "bounds of three numbers" "make-camera: bounds: (1 2 3) must be 'map, #f or (x y width height) of finite numbers"
         (cm-message (lambda () (make-camera bounds: '(1 2 3)))))
   (test "a misspelt keyword" "make-camera: unknown keyword deadzon: (did you mean deadzone:?)"
         (cm-message (lambda () (make-camera deadzon: '(1 . 1))))))

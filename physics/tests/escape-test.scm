@@ -5,7 +5,9 @@
 
 (import scheme (chicken base) (chicken format) (chicken process-context) (downstroke test) (downstroke entity)
         (downstroke tilemap) (downstroke scene) (downstroke pipeline) (downstroke util)
-        (only (downstroke physics) *gravity*))
+        (chicken sort) srfi-4 (only (downstroke physics) *gravity* tile-way-out entity-cell-span))
+
+(include-relative "../../tests/bounded-support.scm")
 
 (define (es-ent . plist) (plist->entity plist))
 
@@ -182,3 +184,164 @@
           (test (sprintf "~a frames, 24 bodies: never halfway into a wall" frames) 0 strays)
           (test "all 24 in the room at the end" 24
                 (count in-room? (scene-entities s)))))))
+
+;;; The search for the shortest way out, against the rule as it was first
+;;; written: every pair of candidates tried, nearest x first.
+
+;; The rule, written plainly from the public cell functions: the four
+;; straight moves, then each pair (dx, dy) of candidate offsets (0, or a
+;; side of the box flush with a tile edge, within the best straight
+;; move's length), x nearest first, for each x the nearest free y, kept
+;; while nearer than the best so far.
+(define (es-way-out-by-pairs tm x y w h)
+  (let* ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm))
+         (c-lo (tilemap-origin-col tm)) (c-hi (+ c-lo (tilemap-width tm) -1))
+         (r-lo (tilemap-origin-row tm)) (r-hi (+ r-lo (tilemap-height tm) -1)))
+    (define (span pos size tile) (call-with-values (lambda () (entity-cell-span pos size tile)) cons))
+    ;; a solid cell in line `l` of one axis, across cells a..b
+    (define (solid-row? r cs) (let loop ((c (max (car cs) c-lo)))
+                                (and (<= c (min (cdr cs) c-hi)) (or (tilemap-solid? tm c r) (loop (+ c 1))))))
+    (define (solid-col? c rs) (let loop ((r (max (car rs) r-lo)))
+                                (and (<= r (min (cdr rs) r-hi)) (or (tilemap-solid? tm c r) (loop (+ r 1))))))
+    ;; the solid line of the box nearest its first (up) or last line
+    (define (find-line lines lo hi solid? last?)
+      (let ((a (max (car lines) lo)) (b (min (cdr lines) hi)))
+        (let loop ((l (if last? b a)))
+          (and (<= a l b) (if (solid? l) l (loop (if last? (- l 1) (+ l 1))))))))
+    (define (row-block x y last?)
+      (let ((cs (span x w tw))) (find-line (span y h th) r-lo r-hi (lambda (r) (solid-row? r cs)) last?)))
+    (define (col-block x y last?)
+      (let ((rs (span y h th))) (find-line (span x w tw) c-lo c-hi (lambda (c) (solid-col? c rs)) last?)))
+    (define (free? x y) (not (row-block x y #t)))
+    (define (go-y dir) (let loop ((p y))
+                         (let ((l (row-block x p (< dir 0))))
+                           (if l (loop (if (< dir 0) (- (* l th) h) (* (+ l 1) th))) (- p y)))))
+    (define (go-x dir) (let loop ((p x))
+                         (let ((l (col-block p y (< dir 0))))
+                           (if l (loop (if (< dir 0) (- (* l tw) w) (* (+ l 1) tw))) (- p x)))))
+    (define (n2 m) (+ (* (car m) (car m)) (* (cdr m) (cdr m))))
+    (define (offsets pos size tile reach)
+      (let loop ((edge (* tile (floor (/ (- pos reach) tile)))) (out (list 0)))
+        (let ((edge (if (exact? edge) edge (inexact->exact edge))))
+          (if (> edge (+ pos size reach))
+              (sort out (lambda (a b) (or (< (abs a) (abs b)) (and (= (abs a) (abs b)) (< a b)))))
+              (loop (+ edge tile)
+                    (let ((out (if (<= (abs (- edge pos)) reach) (cons (- edge pos) out) out)))
+                      (if (<= (abs (- edge size pos)) reach) (cons (- edge size pos) out) out)))))))
+    (if (free? x y)
+        (list 0 0)
+        (let* ((moves (list (cons 0 (go-y -1)) (cons 0 (go-y 1)) (cons (go-x -1) 0) (cons (go-x 1) 0)))
+               (best (foldl (lambda (b m) (if (< (n2 m) (n2 b)) m b)) (car moves) (cdr moves)))
+               (reach (let* ((v (n2 best)) (v (if (exact? v) (ceiling v) (inexact->exact (ceiling v))))
+                             (s (let-values (((s r) (exact-integer-sqrt v))) (if (zero? r) s (+ s 1)))))
+                        s))
+               (dys (offsets y h th reach)))
+          (let try-x ((dxs (offsets x w tw reach)) (best best))
+            (if (or (null? dxs) (>= (* (car dxs) (car dxs)) (n2 best)))
+                (list (car best) (cdr best))
+                (try-x (cdr dxs)
+                       (let try-y ((dys dys))
+                         (if (null? dys) best
+                             (let ((m (cons (car dxs) (car dys))))
+                               (cond ((>= (n2 m) (n2 best)) best)
+                                     ((free? (+ x (car m)) (+ y (cdr m))) m)
+                                     (else (try-y (cdr dys))))))))))))))
+
+(define (es-way-out tm x y w h)
+  (call-with-values (lambda () (tile-way-out tm x y w h)) list))
+
+;; A map of the given rows of tile ids (2 is one-way), its first cell at
+;; (col0, row0).
+(define (es-map rows tw th col0 row0)
+  (let* ((h (length rows)) (w (length (car rows))) (data (make-u32vector (* w h) 0)))
+    (let loop ((rows rows) (j 0))
+      (unless (null? rows)
+        (let fill ((cs (car rows)) (i 0))
+          (unless (null? cs) (u32vector-set! data (+ (* j w) i) (car cs)) (fill (cdr cs) (+ i 1))))
+        (loop (cdr rows) (+ j 1))))
+    (make-tilemap w h tw th (list (make-layer "t" w h data)) origin-col: col0 origin-row: row0 one-way: '(2))))
+
+(test-group "escape: the search gives what trying every pair gives"
+  (define seed 424242)
+  (define (rnd n) (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648)) (modulo (quotient seed 16) n))
+  (define (pick . xs) (list-ref xs (rnd (length xs))))
+  ;; an exact integer, a quarter pixel or a flonum near v
+  (define (number-near v) (case (rnd 3) ((0) v) ((1) (+ v (/ (rnd 4) 4))) (else (+ v (/ (rnd 1000) 997.)))))
+  (let loop ((k 0) (differ '()) (moved 0) (diagonal 0))
+    (if (= k 10000)
+        (begin
+          (test-assert (sprintf "~a of 10000 boxes moved, ~a both ways" moved diagonal)
+                       (and (> moved 3000) (> diagonal 200)))
+          (test "no box differs" '() differ))
+        (let* ((cols (+ 2 (rnd 10))) (rows (+ 2 (rnd 10)))
+               (tw (pick 16 16 8 7 1)) (th (pick 16 16 8 5 3))
+               (col0 (pick 0 0 -3 4)) (row0 (pick 0 0 -2 5))
+               (kind (rnd 5))
+               (tm (es-map (let r ((j 0))
+                             (if (= j rows) '()
+                                 (cons (let c ((i 0))
+                                         (if (= i cols) '()
+                                             (cons (case kind
+                                                     ((0) (if (< (rnd 100) 30) 1 0))
+                                                     ((1 4) (if (< (rnd 100) 85) 1 (pick 0 2)))
+                                                     ((2) (if (and (< 0 i (- cols 1)) (< 0 j (- rows 1))) 1 0))
+                                                     (else (pick 0 1 1 2)))
+                                                   (c (+ i 1)))))
+                                       (r (+ j 1)))))
+                           tw th col0 row0))
+               (w (pick 0 1 (rnd 40) (rnd 40) (* tw (+ 1 (rnd 3))) (+ 0.5 (rnd 30)) (* tw cols (+ 1 (rnd 2)))))
+               (h (pick 0 1 (rnd 40) (rnd 40) (* th (+ 1 (rnd 3))) (+ 0.25 (rnd 30)) (* th rows (+ 1 (rnd 2)))))
+               (x (number-near (+ (* tw col0) -20 (rnd (+ (* tw cols) 40)))))
+               (y (number-near (+ (* th row0) -20 (rnd (+ (* th rows) 40)))))
+               (new (es-way-out tm x y w h))
+               (old (es-way-out-by-pairs tm x y w h)))
+          (loop (+ k 1)
+                (if (equal? new old) differ (cons (list x y w h 'new new 'by-pairs old) differ))
+                (if (equal? new '(0 0)) moved (+ moved 1))
+                (if (and (not (zero? (car new))) (not (zero? (cadr new)))) (+ diagonal 1) diagonal))))))
+
+;; What a frame costs grows with the candidates, not with their pairs,
+;; nor with the body's size: eight bodies deep inside a 2000 x 2000
+;; block of solid tiles (trying every pair took over 15 s a body), and
+;; a body 10^12 px wide across a 3 x 3 map (the candidates along its
+;; width alone took hours), one swept frame each, under a limit of 20 s
+;; of CPU time. The block is the map, so the only way out is past one of
+;; its sides: up for the bodies above its middle, down for the others.
+(test-group "escape: the cost of a frame"
+  (define n 2000)
+  (define side (* 16 n))
+  (define c (/ side 2))
+  (define bodies (let loop ((i 0))
+                   (if (= i 8) '()
+                       (cons (list (+ c 7 (* 3 i) (if (odd? i) 1/4 0))
+                                   (if (< i 4) (- c 40 (* 5 i)) (+ c 40 (* 5 i)))
+                                   (+ 12 i) (+ 14 i))
+                             (loop (+ i 1))))))
+  (define results
+    (bounded-run
+     20
+     `((import scheme (chicken base) srfi-4 (downstroke tilemap) (downstroke scene)
+               (downstroke pipeline) (downstroke entity))
+       (define (frame tm bodies)
+         (map (lambda (e) (list (entity-ref e #:x) (entity-ref e #:y)))
+              (scene-entities (engine-pipeline (make-scene tilemap: tm collision-mode: 'swept entities: bodies)
+                                               16))))
+       (define (body x y w h vx) (list (cons #:x x) (cons #:y y) (cons #:width w) (cons #:height h)
+                                       (cons #:vx vx) (cons #:vy 0)))
+       (write (list "block"
+                    (frame (make-tilemap ,n ,n 16 16 (list (make-layer "solid" ,n ,n (make-u32vector ,(* n n) 1))))
+                           (map (lambda (b) (apply body (append b '(1)))) ',bodies))))
+       (newline)
+       (write (list "wide"
+                    (frame (list->tilemap '((1 1 1) (1 0 1) (1 1 1)) tile-width: 32 tile-height: 32)
+                           (list (body ,(- (expt 10 11) (expt 10 12)) 40 ,(expt 10 12) 100 4)))))
+       (newline))))
+  (test "each body out of the block by its nearest side, then 1 px right"
+        (map (lambda (b)
+               (let ((x (car b)) (y (cadr b)) (h (cadddr b)))
+                 (list (+ x 1) (if (< (+ y h) (- side y)) (- h) side))))
+              bodies)
+        (bounded-result results "block"))
+  (test "the wide body out below the map (56 px down), then 4 px right"
+        (list (list (+ (- (expt 10 11) (expt 10 12)) 4) 96))
+        (bounded-result results "wide")))

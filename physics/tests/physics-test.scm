@@ -6,6 +6,8 @@
         (downstroke test) (downstroke entity) (downstroke tilemap)
         (downstroke scene) (downstroke physics) (downstroke pipeline) srfi-4)
 
+(include-relative "../../tests/bounded-support.scm")
+
 (define (ent . plist) (plist->entity plist))
 (define (pick-size r) (case r ((0) 0) ((1) 200) (else (+ 2 r))))
 (define (at e . keys) (map (lambda (k) (entity-ref e k)) keys))
@@ -283,6 +285,86 @@
     (test-assert "an entity without a group is left alone" (eq? (list-ref es 4) (list-ref out 4))))
   (let ((es (list (ent #:x 1) (ent #:x 2))))
     (test-assert "no groups: the list itself comes back" (eq? es (sync-groups es)))))
+
+;; sync-groups as it was first written: each origin found with assoc
+;; among those before it, each member's origin with assoc. The reference
+;; the one-pass version must equal.
+(define (sync-groups-by-assoc entities)
+  (let ((origins
+         (let loop ((es entities) (out '()))
+           (cond ((null? es) out)
+                 ((let ((e (car es)))
+                    (and (entity-ref e #:group-origin? #f)
+                         (entity-ref e #:group-id #f)
+                         (not (assoc (entity-ref e #:group-id #f) out))))
+                  (loop (cdr es) (cons (cons (entity-ref (car es) #:group-id #f) (car es)) out)))
+                 (else (loop (cdr es) out))))))
+    (if (null? origins)
+        entities
+        (map (lambda (e)
+               (let* ((id (entity-ref e #:group-id #f))
+                      (origin (and id (assoc id origins))))
+                 (if (and origin (not (eq? (cdr origin) e)))
+                     (let ((o (cdr origin)))
+                       (entity-set (entity-set e #:x (+ (entity-ref o #:x 0) (entity-ref e #:group-local-x 0)))
+                                   #:y (+ (entity-ref o #:y 0) (entity-ref e #:group-local-y 0))))
+                     e)))
+             entities))))
+
+(test-group "2.1.10 sync-groups: the same as finding each origin with assoc"
+  (define seed 2024)
+  (define (rnd n) (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648)) (modulo (quotient seed 16) n))
+  (define (pick . xs) (list-ref xs (rnd (length xs))))
+  ;; ids that equal? tells apart or not: symbols, numbers (1 and 1.0
+  ;; differ), strings and lists made afresh, #f (no group)
+  (define (some-id)
+    (case (rnd 9)
+      ((0) 'boss) ((1) 'ship) ((2) 3) ((3) 3.0) ((4) (string #\a #\b)) ((5) (list 'team (rnd 3)))
+      ((6) -0.0) ((7) #f) (else (rnd 40))))
+  (define (some-entity)
+    (let ((plist (append (list #:x (pick 0 (rnd 100) (/ (rnd 100) 3) 2.5) #:y (rnd 50))
+                         (if (< (rnd 10) 8) (list #:group-id (some-id)) '())
+                         (if (< (rnd 10) 3) (list #:group-origin? (pick #t #t 'yes #f)) '())
+                         (if (< (rnd 10) 5) (list #:group-local-x (pick 1 -7 1/2 0.25)) '())
+                         (if (< (rnd 10) 5) (list #:group-local-y (rnd 9)) '()))))
+      (plist->entity plist)))
+  (let loop ((k 0) (differ 0) (moved 0))
+    (if (= k 2000)
+        (begin (test-assert (sprintf "~a of 2000 lists had members placed" moved) (> moved 1000))
+               (test "every list comes out the same" 0 differ))
+        (let* ((es (let make ((i (rnd 30))) (if (= i 0) '() (cons (some-entity) (make (- i 1))))))
+               (new (sync-groups es))
+               (old (sync-groups-by-assoc es))
+               (same? (and (equal? new old)
+                           ;; an entity left alone is the same object in both
+                           (let walk ((a new) (b old) (e es))
+                             (or (null? e)
+                                 (and (eq? (eq? (car a) (car e)) (eq? (car b) (car e)))
+                                      (walk (cdr a) (cdr b) (cdr e)))))
+                           (eq? (eq? new es) (eq? old es)))))
+          (loop (+ k 1) (if same? differ (+ differ 1))
+                (if (equal? old es) moved (+ moved 1)))))))
+
+;; A frame's groups cost one pass: 100,000 two-entity groups in a limit of
+;; 20 s of CPU time (assoc for each took about two minutes).
+(test-group "2.1.10 sync-groups: the cost of many groups"
+  (define n 100000)
+  (define results
+    (bounded-run
+     20
+     `((import scheme (chicken base) (downstroke physics) (downstroke entity))
+       (define es (let loop ((i 0) (out '()))
+                    (if (= i ,n) out
+                        (loop (+ i 1)
+                              (cons (list (cons #:group-id i) (cons #:group-origin? #t) (cons #:x i) (cons #:y (* 2 i)))
+                                    (cons (list (cons #:group-id i) (cons #:group-local-x 1) (cons #:group-local-y 2)
+                                                (cons #:x 0) (cons #:y 0))
+                                          out))))))
+       (write (list "sum of x and y" (foldl (lambda (s e) (+ s (entity-ref e #:x) (entity-ref e #:y))) 0
+                                            (sync-groups es))))
+       (newline))))
+  ;; origins at (i, 2i), members at (i + 1, 2i + 2): 3 n (n - 1) + 3 n
+  (test "every member beside its origin" (* 3 n n) (bounded-result results "sum of x and y")))
 
 (test-group "maps whose origin is not 0,0 (infinite maps)"
   ;; 4 x 2 cells starting at column -4, row -2; column -2 is a wall.

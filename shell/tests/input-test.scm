@@ -5,6 +5,8 @@
 (import scheme (chicken base) (chicken string)
         (downstroke test) (downstroke input) (downstroke sdl2) (downstroke engine))
 
+(include-relative "../../tests/bounded-support.scm")
+
 (define in-cfg *default-input-config*)
 
 ;; The state after feeding frames of events in turn, starting empty.
@@ -136,6 +138,78 @@
                                                     (input-released-actions s)))
                                   ss))))
     (test "a recording replays the same edges frame by frame" (edges live) (edges replay))))
+
+;; scripted-input keeps its place in the script; the states it gives are
+;; those of the readable definitions, which look each frame up from the
+;; script's start, whatever order the frames are asked in.
+(test-group "input: a script's place is kept, with the same states"
+  (define seed 99)
+  (define (rnd n) (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648)) (modulo (quotient seed 16) n))
+  (define (pick . xs) (list-ref xs (rnd (length xs))))
+  (define (some-script)
+    (let loop ((f (rnd 3)) (k (rnd 12)) (out '()))
+      (if (= k 0) (reverse out)
+          (loop (+ f 1 (rnd 4)) (- k 1)
+                (cons (cons f (append (if (< (rnd 3) 2) (list (pick 'left 'right 'a)) '())
+                                      (if (< (rnd 3) 1) (list (list 'tap (pick 'a 'b 'left))) '())
+                                      (if (< (rnd 4) 1) (list (list 'mouse (rnd 300) (rnd 200))) '())))
+                      out)))))
+  ;; mostly forward, as a game runs; sometimes a skip, a repeat or a step back
+  (define (some-frames)
+    (let loop ((f 0) (k 40) (out '()))
+      (if (= k 0) (reverse out)
+          (let ((next (case (rnd 10) ((0) (max 0 (- f (rnd 20)))) ((1) f) ((2) (+ f (rnd 15))) (else (+ f 1)))))
+            (loop next (- k 1) (cons f out))))))
+  (define (state-of s) (list (input-held-actions s) (input-pressed-actions s) (input-released-actions s)
+                             (input-mouse-x s) (input-mouse-y s)))
+  (let loop ((k 0) (differ 0) (backwards 0))
+    (if (= k 500)
+        (begin (test-assert (sprintf "~a of 500 runs stepped back" backwards) (> backwards 300))
+               (test "every state is the same" 0 differ))
+        (let* ((script (some-script)) (frames (some-frames))
+               (proc (scripted-input script))
+               (same? (let run ((fs frames) (a (make-input-state)) (b (make-input-state)))
+                        (or (null? fs)
+                            (let* ((f (car fs))
+                                   (a (proc f a))
+                                   (b (receive (held taps) (script-held-at script f)
+                                        (input-from-held b held taps (script-mouse-at script f)))))
+                              (and (equal? (state-of a) (state-of b)) (run (cdr fs) a b)))))))
+          (loop (+ k 1) (if same? differ (+ differ 1))
+                (if (let back ((fs frames)) (and (pair? fs) (pair? (cdr fs)) (or (< (cadr fs) (car fs)) (back (cdr fs)))))
+                    (+ backwards 1) backwards))))))
+
+;; Replaying costs one step along the script in all: a script of 60,000
+;; entries over 120,000 frames, within a limit of 20 s of CPU time
+;; (looking each frame up from the start took about four minutes).
+(test-group "input: the cost of a long replay"
+  (define e 60000)
+  (define results
+    (bounded-run
+     20
+     `((import scheme (chicken base) (downstroke input))
+       ;; entry k at frame 2k: left or right in turn, a tap of a every
+       ;; third, the pointer at (k, 2k) every fifth
+       (define script (let loop ((k (- ,e 1)) (out '()))
+                        (if (< k 0) out
+                            (loop (- k 1)
+                                  (cons (cons (* 2 k) (append (list (if (even? k) 'left 'right))
+                                                              (if (= 0 (modulo k 3)) '((tap a)) '())
+                                                              (if (= 0 (modulo k 5)) (list (list 'mouse k (* 2 k))) '())))
+                                        out)))))
+       (define proc (scripted-input script))
+       (let loop ((f 0) (s (make-input-state)) (left 0) (a 0))
+         (if (= f ,(* 2 e))
+             (begin (write (list "left held, a pressed, pointer" (list left a (input-mouse-x s) (input-mouse-y s))))
+                    (newline))
+             (let ((n (proc f s)))
+               (loop (+ f 1) n (if (input-held? n 'left) (+ left 1) left) (if (input-pressed? n 'a) (+ a 1) a))))))))
+  ;; left is held in the two frames of each even entry; a is pressed once
+  ;; for each entry k divisible by 3; the last pointer entry is the last k
+  ;; divisible by 5
+  (test "the replay's states" (list (* 2 (quotient (+ e 1) 2)) (quotient (+ e 2) 3)
+                                    (* 5 (quotient (- e 1) 5)) (* 10 (quotient (- e 1) 5)))
+        (bounded-result results "left held, a pressed, pointer")))
 
 ;; Real SDL key events, pushed from the update hook and seen by the next
 ;; frame's input state.

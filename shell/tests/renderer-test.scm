@@ -292,7 +292,18 @@
             (let count ((y 0) (x 0) (n 0))
               (cond ((= y 24) n)
                     ((= x 32) (count (+ y 1) 0 n))
-                    (else (count y (+ x 1) (if (member (px x y) tile-colours) (+ n 1) n)))))))))
+                    (else (count y (+ x 1) (if (member (px x y) tile-colours) (+ n 1) n)))))))
+    (let* ((tile-colours (list rn-red rn-green rn-blue rn-white rn-yellow rn-cyan))
+           (count (lambda (px)
+                    (let loop ((y 0) (x 0) (n 0))
+                      (cond ((= y 24) n)
+                            ((= x 32) (loop (+ y 1) 0 n))
+                            (else (loop y (+ x 1) (if (member (px x y) tile-colours) (+ n 1) n))))))))
+      ;; the layer camera is 2 * 1e308, past the largest flonum
+      (test "with the camera at 2 the parallax layer's camera overflows: not drawn, and no error" 0
+            (handle-exceptions exn (error-text exn) (count (draw 2))))
+      (test "... nor at -2, nor with a flonum camera" '(0 0)
+            (handle-exceptions exn (error-text exn) (list (count (draw -2)) (count (draw 2.5))))))))
 
 (free-surface! rn-surface)
 (delete-directory rn-dir #t)

@@ -1,7 +1,7 @@
 ;;; (downstroke sdl2): real SDL on the dummy video driver, drawing into a
 ;;; software renderer on a surface and reading the pixels back.
 
-(import scheme (chicken base) (chicken file) (chicken string) (chicken gc)
+(import scheme (chicken base) (chicken file) (chicken string) (chicken gc) (chicken fixnum)
         srfi-4 (downstroke test) (downstroke sdl2))
 (include-relative "../../tests/pixels.scm")
 
@@ -44,6 +44,67 @@
     (clear!)
     (render-fill-rect! r (make-rect -2 -1 4 3))
     (test "ordinary clipping at the edges is SDL's, as before" 4 (count))))
+
+;; Where numbers enter SDL (sdl2.scm, downstroke_rect and
+;; downstroke_copy): any real becomes the ints SDL takes, and what is cut
+;; on the way is never seen.
+(test-group "sdl2: rects and copies far beyond the view are cut without changing the view"
+  (let* ((s (create-rgba-surface! 8 6))
+         (r (create-software-renderer! s))
+         (red '(255 0 0 255)) (green '(0 255 0 255)) (black '(0 0 0 255))
+         (row (lambda () (let ((f (sdl-frame r))) (map (lambda (x) (sdl-pixel f x 3)) '(0 3 4 7)))))
+         (clear! (lambda () (render-draw-color-set! r 0 0 0) (render-clear! r)
+                         (render-draw-color-set! r 255 0 0))))
+    (write-tiles-png! (sdl-path "two.png") 1 (list '(255 0 0) '(0 255 0)))
+    (let ((t (img-load-texture! r (sdl-path "two.png"))))
+      (clear!)
+      (render-fill-rect! r (make-rect +nan.0 0 4 4))
+      (render-fill-rect! r (make-rect -inf.0 0 +inf.0 6))
+      (test "a rect holding a NaN, or from -inf.0 over +inf.0 (no extent), draws nothing" (list black black black black)
+            (row))
+      (render-fill-rect! r (make-rect most-positive-fixnum 0 10 6))
+      (render-fill-rect! r (make-rect 0 most-positive-fixnum 10 6))
+      (test "a rect at the largest fixnum is far off, not wrapped onto the view" (list black black black black)
+            (row))
+      (render-fill-rect! r (make-rect 3 0 +inf.0 6))
+      (test "a rect from 3 over +inf.0 covers the row from 3" (list black red red red) (row))
+      (render-fill-rect! r (make-rect -1e308 0 1.5e308 6))
+      (test "a rect from -1e308 over 1.5e308 covers the row" (list red red red red) (row))
+      ;; two texels, red | green, stretched over 2^41 px with their
+      ;; boundary at x = 4: the view sees exactly that boundary
+      (clear!)
+      (render-copy! r t #f (make-rect (- 4 (expt 2 40)) 0 (expt 2 41) 6))
+      (test "a copy 2^41 px wide shows the two texels meeting where they meet" (list red red green green) (row))
+      (clear!)
+      (render-copy! r t #f (make-rect (- 4 (expt 2 40)) 0 (expt 2 41) 6) flip: '(horizontal))
+      (test "... mirrored" (list green green red red) (row))
+      (clear!)
+      (render-copy! r t (make-rect 0 0 2 1) (make-rect (exact->inexact (- 4 (expt 2 52))) 0.
+                                                        (exact->inexact (expt 2 53)) 6.))
+      (test "... and 2^53 px wide, as flonums" (list red red green green) (row))
+      (clear!)
+      (render-copy! r t #f (make-rect (- 4 (* 20000 2)) 0 (* 20000 4) 6))
+      (test "a copy whose texels are 20000 px (wider than a copy's reach)" (list red red green green) (row))
+      (clear!)
+      (render-copy! r t #f (make-rect (- 4 20000) 0 40000 6))
+      (test "a copy 40000 px wide whose texels are 20000 px" (list red red green green) (row))
+      (clear!)
+      (render-copy! r t #f (make-rect +nan.0 0 8 6))
+      (render-copy! r t #f (make-rect -inf.0 0 +inf.0 6))
+      (test "a copy with a NaN or infinite destination draws nothing, and is no error" (list black black black black)
+            (row))
+      (clear!)
+      (render-copy! r t #f (make-rect (- 4 (expt 2 40)) 0 (expt 2 41) 6) angle: 90)
+      (test "a turned copy that far is not drawn" (list black black black black) (row))
+      (test-error "an angle that is not finite is an error" (render-copy! r t #f (make-rect 0 0 2 2) angle: +nan.0))
+      (test-error "a scale a C float cannot hold (1e300, +inf.0 as a float) is an error" (render-scale-set! r 1e300 1))
+      ;; last: reading pixels at this scale leaves the renderer's viewport empty
+      (clear!)
+      (render-scale-set! r 100 100)
+      (render-fill-rect! r (make-rect (- (expt 2 30)) (- (expt 2 30)) (expt 2 31) (expt 2 31)))
+      (test "at scale 100 a rect from -2^30 to 2^30 still covers the target (no int overflow in SDL)"
+            (list red red red red) (row)))
+    (free-surface! s)))
 
 (test-group "sdl2: software renderer on a surface"
   (let* ((s (create-rgba-surface! 8 6))

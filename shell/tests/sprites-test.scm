@@ -4,7 +4,7 @@
 
 (import scheme (chicken base) (chicken file) (chicken format) (chicken string)
         (chicken condition) srfi-4 (downstroke test) (downstroke sdl2) (downstroke entity)
-        (downstroke scene) (downstroke tilemap) (downstroke renderer))
+        (downstroke scene) (downstroke tilemap) (downstroke renderer) (downstroke particles))
 (include-relative "../../tests/pixels.scm")
 
 (init!)
@@ -248,6 +248,67 @@
                                                #:origin-x 0 #:origin-y 0 #:flip-x? #t #:flip-y? #t
                                                #:angle 3 #:scale 2 #:scale-x 1 #:scale-y 1 #:alpha 9
                                                #:tint '(1 2 3) #:tileset 'solids #:z 2))))))
+
+;; Finite numbers that overflow once the renderer works with them: each is
+;; drawn as it should be, or refused naming the entity and the key.
+(define (lit-count px)
+  (let loop ((i 0) (n 0))
+    (if (= i (* 32 24)) n (loop (+ i 1) (if (equal? (px (modulo i 32) (quotient i 32)) sp-black) n (+ n 1))))))
+
+(test-group "sprites: finite values that overflow later"
+  ;; (proc px) of the frame drawn with these entities, inside each test
+  (define (seen proc . entities) (proc (apply sp-draw entities)))
+  (define giant (list #:type 'giant #:x 10 #:y 5 #:tile-id 1 #:scale 1e308))
+  (test "#:scale 1e308 (about its centre): the sprite covers the whole view" (* 32 24)
+        (seen lit-count giant))
+  ;; each texel is 1e308 px: the view sees the four about the centre (14, 9)
+  (test "... its four middle texels meeting at its centre, exactly there"
+        (list sp-red sp-green sp-blue sp-white sp-red sp-green sp-blue sp-white)
+        (seen (lambda (px) (list (px 13 8) (px 14 8) (px 13 9) (px 14 9) (px 0 0) (px 31 0) (px 0 23) (px 31 23)))
+              giant))
+  (test "... mirrored, the texels swap sides" (list sp-green sp-red sp-white sp-blue)
+        (seen (lambda (px) (list (px 13 8) (px 14 8) (px 13 9) (px 14 9)))
+              (append giant (list #:flip-x? #t))))
+  (test "#:scale 1e308 about its top-left corner: it covers the view right of and below #:x #:y, in its first texel"
+        (list '(10 5 31 23) sp-red sp-red)
+        (seen (lambda (px) (list (lit-box px) (px 10 5) (px 31 23)))
+              (append giant (list #:origin-x 0 #:origin-y 0))))
+  (test "#:scale-x 1e308 alone: a band the sprite's height, the whole width" '(0 5 31 12)
+        (seen lit-box (list #:type 'giant #:x 10 #:y 5 #:tile-id 2 #:scale-x 1e308)))
+  (test "#:scale 1000: 8000 px, drawn by SDL as it is, covers the view" (* 32 24)
+        (seen lit-count (list #:x 10 #:y 5 #:tile-id 1 #:scale 1000)))
+  (test "#:scale 1e6: cut on whole texels like 1e308, its centre exactly where it is"
+        (list sp-red sp-green sp-blue sp-white)
+        (seen (lambda (px) (list (px 13 8) (px 14 8) (px 13 9) (px 14 9)))
+              (list #:x 10 #:y 5 #:tile-id 1 #:scale 1000000)))
+  (test "#:scale 1e308 turned 45 degrees is not drawn, and is no error" 0
+        (seen lit-count (append giant (list #:angle 45))))
+  (test "a sprite at #:x 1e308 with #:sprite-offset-x 1e308 is off the view, not an error" 0
+        (seen lit-count (list #:type 'far #:x 1e308 #:y 0 #:tile-id 1 #:sprite-offset-x 1e308)))
+  (test "a NaN in #:tint is an error naming the entity and the key"
+        "entity coin 3: #:tint is (+nan.0 0 0), not (r g b)"
+        (message-of (lambda () (sp-draw (list #:type 'coin #:id 3 #:x 0 #:y 0 #:tile-id 1 #:tint (list +nan.0 0 0))))))
+  (test "a tint of (+inf.0 -inf.0 1e308) is held to (255 0 255): red stays, green goes, white is magenta"
+        (list sp-red sp-black '(0 0 255 255) '(255 0 255 255))
+        (seen (lambda (px) (quadrants px 0 0)) (list #:x 0 #:y 0 #:tile-id 1 #:tint (list +inf.0 -inf.0 1e308))))
+  (test "a box entity at #:x +nan.0 is an error naming the entity and the key"
+        "entity crate 2: #:x is +nan.0, not a finite real number"
+        (message-of (lambda () (sp-draw (list #:type 'crate #:id 2 #:x +nan.0 #:y 0 #:width 4 #:height 4
+                                              #:color '(200 0 0))))))
+  (test "a box 1.7e308 wide from -1e308 covers the view" (* 32 24)
+        (seen lit-count (list #:x -1e308 #:y -10 #:width 1.7e308 #:height 100 #:color '(200 0 0))))
+  ;; an emitter whose particles fly 1e308 px a frame: after a step each
+  ;; one born before is past the largest flonum, off the view
+  (let loop ((frame 0)
+             (e (plist->entity
+                 (list #:type 'fountain #:x 10 #:y 10
+                       #:emitter (make-emitter rate: 1 speed: 1e308 angle: 0 lifetime: 100 size: '(2 2))))))
+    (when (< frame 6)
+      (let ((e (step-particles #f e 16)))
+        (test (sprintf "an emitter speed of 1e308, frame ~a: ~a particles, only the newborn one drawn"
+                       frame (+ frame 1))
+              '(9 9 10 10) (handle-exceptions exn (error-text exn) (seen lit-box e)))
+        (loop (+ frame 1) e)))))
 
 (destroy-texture! quads-tex)
 (destroy-texture! solids-tex)
