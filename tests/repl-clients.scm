@@ -20,12 +20,16 @@
 EOF
 )
 
-;; A connected socket to 127.0.0.1:port, or -1.
+;; A connected socket to 127.0.0.1:port with a 64 KiB receive buffer, or -1.
 (define rc-connect
   (foreign-lambda* int ((int port))
-    "struct sockaddr_in a; int one = 1; int fd = socket(AF_INET, SOCK_STREAM, 0);
+    "struct sockaddr_in a; int one = 1; int small = 65536; int fd = socket(AF_INET, SOCK_STREAM, 0);
      if (fd < 0) C_return(-1);
      setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+     /* a fixed receive buffer: Linux would otherwise let it grow up to
+        net.ipv4.tcp_rmem's limit (32 MiB on some hosts), and a client
+        that reads nothing could then hold a whole large answer */
+     setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
      memset(&a, 0, sizeof a); a.sin_family = AF_INET; a.sin_port = htons(port);
      a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
      if (connect(fd, (struct sockaddr *)&a, sizeof a) < 0) { close(fd); C_return(-1); }
