@@ -81,7 +81,7 @@
   (define (scene-problems s) (entity-list-problems (scene-entities s)))
 
   ;; How tile collisions are resolved unless a scene or an entity says
-  ;; otherwise (see physics.scm and docs/physics.org).
+  ;; otherwise (see physics/tile-collisions.scm and docs/physics.org).
   (define *default-collision-mode* 'swept)
 
   ;; tilesets: more sprite sheets, which an entity names with #:tileset

@@ -1,21 +1,10 @@
-/* (downstroke physics)'s C: the type test for entity numbers and the
-   fixnum motion kernel, steps 2-7 of docs/physics.org's pipeline (and tile ground
-   detection) for entities of small fixnums. Included by physics.scm, one
-   compilation unit with it; the Scheme comments there say why it is C. */
+/* (downstroke motion)'s C: the fixnum motion kernel, steps 2-7 of
+   docs/physics.org's pipeline (and tile ground detection) for entities of
+   small fixnums. Included by motion.scm, one compilation unit with it;
+   the Scheme comments there say why it is C. */
 
-#include "motion.h"
+#include "physics/motion.h"
 #include "physics/arith.h"
-
-static C_word ds_plain_number(C_word v) {
-  if (v & C_FIXNUM_BIT) return C_fix(1);
-  if (C_immediatep(v)) return C_fix(0);
-  switch (C_block_header(v)) {
-  case C_RATNUM_TAG: case C_BIGNUM_TAG: return C_fix(1);
-  case C_FLONUM_TAG: { double d = C_flonum_magnitude(v); return C_fix(d - d == 0.0); }
-  default: return C_fix(0);
-  }
-}
-
 
 static long ds_min(long a, long b) { return a < b ? a : b; }
 static long ds_max(long a, long b) { return a > b ? a : b; }
@@ -82,7 +71,7 @@ static int ds_cell(const unsigned char *bytes, long cols, long rows, long col0, 
 
 /* Whether the box [xn/xd, +w) x [yn/yd, +h) covers a solid cell (byte 1).
    Swept mode takes a moving body that starts a frame so out of the tiles
-   first (physics.scm's leave-solids); the kernel leaves such a body to it. */
+   first (tile-collisions.scm's leave-solids); the kernel leaves such a body to it. */
 static int ds_box_solid(const unsigned char *bytes, long cols, long rows, long col0, long row0,
                         long tw, long th, long xn, long xd, long w, long yn, long yd, long h)
 {

@@ -1,7 +1,7 @@
-/* The motion kernel's interface with physics.scm: the flags it is given
-   for an entity and the keys it answers to write. physics.scm names every
+/* The motion kernel's interface with motion.scm: the flags it is given
+   for an entity and the keys it answers to write. motion.scm names every
    value below as a constant that the C compiler checks against this file
-   (define-kernel-flag), so the two sides cannot drift apart. */
+   (define-c-constant), so the two sides cannot drift apart. */
 #ifndef DS_MOTION_H
 #define DS_MOTION_H
 

@@ -25,7 +25,7 @@
   ;; other over every entity of the scene, then the library's own last
   ;; step, particles (particles.scm), which no other step reads. The first step notes where each
   ;; immovable body starts the frame, so that the entity step carries a
-  ;; rider by what its platform did (physics.scm, record-frame-start).
+  ;; rider by what its platform did (contacts.scm, record-frame-start).
   (define (contract-pipeline scene dt)
     (chain scene
       (scene-map-entities _ (cut record-frame-start        <> <> dt))
@@ -110,7 +110,7 @@
   ;; The same pipeline, as a pure function of a scene.
   ;; Steps 1-7 read no other entity, so they run back to back per entity
   ;; (one list built instead of seven): tweens, then the motion pass
-  ;; (steps 2-7 in one walk, see physics.scm). Ground detection sees every
+  ;; (steps 2-7 in one walk, see motion.scm). Ground detection sees every
   ;; entity after its tile passes; then the bulk steps; then animation. A
   ;; tween's on-complete may change an entity in any way, so after tweens
   ;; the needs are read again. Without tweens and without solid entities,

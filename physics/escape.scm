@@ -1,0 +1,258 @@
+;;; (downstroke escape): the shortest way out of solid tiles for a box that is inside them.
+;;;
+;;; Swept mode takes a body that starts a frame inside solid tiles out of
+;;; them before it moves (docs/physics.org, "A body that starts a frame
+;;; inside solid tiles"); tile-way-out is that search, exact, in time that
+;;; grows with the map's lines near the box, not with the box's size.
+
+(module (downstroke escape)
+  (tile-way-out)
+
+  (import scheme (chicken base) (chicken fixnum) (chicken sort) srfi-4
+          (downstroke map) (downstroke tile-grid))
+
+  ;; The shortest move (dx, dy) that takes the box at (x, y) of w x h out
+  ;; of every solid tile (one-way tiles do not count): 0 0 when it is in
+  ;; none. A box sunk into a floor goes up; one in a corner between a wall
+  ;; and a floor goes both ways at once. Exact: the free place nearest to
+  ;; the box has each coordinate either unchanged or flush with a tile
+  ;; edge, so only those candidates are tried, nearest first, within the
+  ;; distance of the best straight move (up, down, left, right: on each
+  ;; side the box is moved past the nearest solid line until it is free;
+  ;; outside the map every cell is empty, so this ends). Equal distances
+  ;; prefer the straight moves in that order, then less sideways motion.
+  ;; The search (nearest-free-pair) gives what trying every pair of
+  ;; candidates, x candidates outside and y candidates inside, would give,
+  ;; in time that grows with the candidates, not with their pairs.
+  (define (tile-way-out tm x y w h)
+    (let* ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm))
+           (rows (row-grid tm)) (cols (column-grid tm)))
+      ;; the solid line of a box nearest its side `toward` (+1: the far
+      ;; side), along the axis of `grid`; #f when the box is free
+      (define (blocking grid pos size across across-size tile tile-across toward)
+        (let ((l0 (span-first pos tile)) (l1 (span-last pos size tile)))
+          (nearest-solid-line grid (if (> toward 0) l1 l0) (if (> toward 0) l0 l1) (- toward)
+                              (span-first across tile-across) (span-last across across-size tile-across))))
+      (define (free? x y) (not (blocking rows y h x w th tw 1)))
+      ;; The four straight moves, up, down, left and right: each moves the
+      ;; box past the nearest solid line on that side until it is free,
+      ;; each step farther. They are run as a race, always stepping the
+      ;; one that has gone least far (of equals, the first), so that the
+      ;; one that ends nearest is found without running the others to
+      ;; their ends: the shortest, of equals the first in that order.
+      (define (shortest-straight)
+        (let ((at (vector y y x x)) (done (make-vector 4 #f)))
+          ;; the squared distance runner i has gone (read from `at`: a
+          ;; vector made of literal numbers would be typed as holding
+          ;; fixnums by CHICKEN's optimizer, whatever is stored in it later)
+          (define (gone i) (square (- (vector-ref at i) (if (fx< i 2) y x))))
+          (let race ()
+            (let* ((i (let pick ((i 1) (best 0) (far (gone 0)))
+                        (if (fx= i 4) best
+                            (let ((d (gone i)))
+                              (if (< d far) (pick (fx+ i 1) i d) (pick (fx+ i 1) best far))))))
+                   (p (vector-ref at i)))
+              (if (vector-ref done i)
+                  (if (fx< i 2) (cons 0 (- p y)) (cons (- p x) 0))
+                  (let ((line (case i
+                                ((0 1) (blocking rows p h x w th tw (if (fx= i 0) 1 -1)))
+                                (else (blocking cols p w y h tw th (if (fx= i 2) 1 -1))))))
+                    (if line
+                        (vector-set! at i (case i
+                                            ((0) (- (* line th) h))
+                                            ((1) (* (+ line 1) th))
+                                            ((2) (- (* line tw) w))
+                                            (else (* (+ line 1) tw))))
+                        (vector-set! done i #t))
+                    (race)))))))
+      (if (free? x y)
+          (values 0 0)
+          (let* ((best (shortest-straight))
+                 (best (nearest-free-pair tm x y w h best (sqrt-ceiling (norm2 best)))))
+            (values (car best) (cdr best))))))
+
+  (define (square v) (* v v))
+  (define (norm2 m) (+ (square (car m)) (square (cdr m))))
+  ;; an exact integer at least sqrt(v), for v >= 0
+  (define (sqrt-ceiling v)
+    (let-values (((s rest) (exact-integer-sqrt (->integer (ceiling v)))))
+      (if (zero? rest) s (+ s 1))))
+
+  ;; The offsets within `reach` of pos, on one axis, that put a box of
+  ;; `size` flush with a tile edge (its near side on the edge, edge - pos,
+  ;; or its far side, edge - size - pos), and 0; nearest first, and of
+  ;; two at the same distance the negative one. The map covers lines
+  ;; first .. first+count-1 of `tile` px on this axis. An edge more than a
+  ;; tile away from both ends of the map, and from both ends shifted by
+  ;; the size, is skipped: there the box is outside the map or across all
+  ;; of it, as at a nearer candidate, which the search below prefers
+  ;; anyway. So a body of any size has at most about four candidates per
+  ;; line of the map.
+  (define (candidates pos size tile reach first count)
+    (let* ((lines (lambda (lo hi)     ; the edges within a tile of lo .. hi (px)
+                    (cons (- (->integer (floor (/ lo tile))) 1) (+ (->integer (ceiling (/ hi tile))) 1))))
+           (start (* first tile)) (end (* (+ first count) tile))
+           (ends (lines start end))
+           (near-ends (lines (- start size) (- end size)))
+           (far-ends (lines (+ start size) (+ end size)))
+           (in? (lambda (k range) (<= (car range) k (cdr range))))
+           (limit (+ pos size reach)))
+      (define (loop-end out)
+        (sort out (lambda (a b) (or (< (abs a) (abs b)) (and (= (abs a) (abs b)) (< a b))))))
+      (let loop ((k (cell-of (- pos reach) tile)) (out (list 0)))
+        (let ((edge (* k tile)))
+          (if (> edge limit)
+              (loop-end out)
+              (let ((near? (or (in? k ends) (in? k near-ends)))
+                    (far? (or (in? k ends) (in? k far-ends))))
+                (if (or near? far?)
+                    (loop (+ k 1)
+                          (let ((out (if (and near? (<= (abs (- edge pos)) reach)) (cons (- edge pos) out) out)))
+                            (if (and far? (<= (abs (- edge size pos)) reach)) (cons (- edge size pos) out) out)))
+                    ;; on to the next range of edges that count, if any
+                    (let ((next (foldl (lambda (n range)
+                                         (if (and (> (car range) k) (or (not n) (< (car range) n))) (car range) n))
+                                       #f (list ends near-ends far-ends))))
+                      (if next
+                          (loop next out)
+                          (loop-end out))))))))))
+
+  ;; The lines of the map a span [pos, pos+size) covers, counted from the
+  ;; map's first line (cells of `tile` px, lines first .. first+count-1):
+  ;; (lo . hi), or #f when it covers none (as nearest-solid-line clips).
+  (define (map-span pos size tile first count)
+    (let ((lo (max (- (span-first pos tile) first) 0))
+          (hi (min (- (span-last pos size tile) first) (- count 1))))
+      (and (<= lo hi) (cons lo hi))))
+
+  ;; How many solid cells (byte 1) each rectangle of the map from its
+  ;; first row and column holds: row r of the table is a u32vector whose
+  ;; element c counts rows 0 .. r-1 by columns 0 .. c-1. Made the first
+  ;; time a body must leave a map's tiles and kept with its grids; 4 bytes
+  ;; per cell, a vector of rows so that no one vector outgrows a 32-bit
+  ;; build's limit.
+  (define (solid-counts tm)
+    (let ((g (grids tm)))
+      (or (vector-ref g 4)
+          (let* ((bytes (tilemap-solid-grid tm)) (cols (tilemap-width tm)) (rows (tilemap-height tm))
+                 (table (make-vector (fx+ rows 1))))
+            (vector-set! table 0 (make-u32vector (fx+ cols 1) 0))
+            (do ((r 0 (fx+ r 1))) ((fx= r rows))
+              (let ((above (vector-ref table r)) (here (make-u32vector (fx+ cols 1) 0)) (base (fx* r cols)))
+                (let loop ((c 0) (run 0))
+                  (when (fx< c cols)
+                    (let ((run (if (fx= 1 (u8vector-ref bytes (fx+ base c))) (fx+ run 1) run)))
+                      (u32vector-set! here (fx+ c 1) (fx+ (u32vector-ref above (fx+ c 1)) run))
+                      (loop (fx+ c 1) run))))
+                (vector-set! table (fx+ r 1) here)))
+            (vector-set! g 4 table)
+            table))))
+
+  ;; The solid cells in rows p..q, columns a..b of the map (from its
+  ;; first row and column, inclusive).
+  (define (solids-in table a b p q)
+    (let ((top (vector-ref table p)) (bottom (vector-ref table (fx+ q 1))))
+      (fx- (fx+ (u32vector-ref bottom (fx+ b 1)) (u32vector-ref top a))
+           (fx+ (u32vector-ref top (fx+ b 1)) (u32vector-ref bottom a)))))
+
+  ;; The y candidates on one side of the box: those that move it up
+  ;; (negative), or the others, nearest first. Their rows move one way,
+  ;; so the search below can skip over the ones a solid row blocks.
+  ;; #(indices into dys, first rows, last rows, the first index whose box
+  ;; covers no row of the map or #f); the first three hold only boxes that
+  ;; cover a row.
+  (define (dy-side dys up? y h th first count)
+    (let loop ((j (fx- (vector-length dys) 1)) (ks '()) (ps '()) (qs '()) (empty #f))
+      (if (fx< j 0)
+          (vector (list->vector ks) (list->vector ps) (list->vector qs) empty)
+          (let ((dy (vector-ref dys j)))
+            (if (eq? up? (negative? dy))
+                (let ((span (map-span (+ y dy) h th first count)))
+                  (if span
+                      (loop (fx- j 1) (cons j ks) (cons (car span) ps) (cons (cdr span) qs) empty)
+                      (loop (fx- j 1) ks ps qs j)))
+                (loop (fx- j 1) ks ps qs empty))))))
+
+  ;; The first y candidate on one side whose box, over columns a..b,
+  ;; holds no solid cell, among those nearer (with dx) than `bound`; #f
+  ;; when none is. A blocked box's solid row farthest in the side's
+  ;; direction blocks every later candidate that still covers it, and so
+  ;; do the rows past it that are solid all across a..b: the search jumps
+  ;; past them (binary searches on the table), so a body deep in a solid
+  ;; block costs a few steps per x candidate.
+  (define (side-first-free side up? table a b dx dys bound last-row)
+    (let* ((ks (vector-ref side 0)) (ps (vector-ref side 1)) (qs (vector-ref side 2))
+           (n (vector-length ks)) (empty (vector-ref side 3))
+           (width (fx+ (fx- b a) 1))
+           (near? (lambda (j) (< (+ (square dx) (square (vector-ref dys j))) bound)))
+           (solids (lambda (p q) (solids-in table a b p q)))
+           (full? (lambda (p q) (fx= (solids p q) (fx* width (fx+ (fx- q p) 1)))))
+           ;; the first k in lo..hi-1 with (yes? k), or hi; yes? turns true once
+           (bisect (lambda (lo hi yes?)
+                     (let loop ((lo lo) (hi hi))
+                       (if (fx>= lo hi) hi
+                           (let ((mid (fx/ (fx+ lo hi) 2)))
+                             (if (yes? mid) (loop lo mid) (loop (fx+ mid 1) hi)))))))
+           ;; how many lines past `from`, stepping by `step`, are solid all
+           ;; across (bounded by `room`)
+           (solid-run (lambda (from step room)
+                        (let ((run? (lambda (m) (or (fx= m 0)
+                                                    (if (fx> step 0)
+                                                        (full? (fx+ from 1) (fx+ from m))
+                                                        (full? (fx- from m) (fx- from 1)))))))
+                          (let gallop ((good 0) (try 1))
+                            (let ((try (fxmin try room)))
+                              (if (and (fx> try good) (run? try))
+                                  (gallop try (fx* try 2))
+                                  (fx- (bisect (fx+ good 1) (fxmax try (fx+ good 1))
+                                               (lambda (m) (not (run? m))))
+                                       1)))))))
+           (found
+            (let loop ((k 0))
+              (and (fx< k n)
+                   (let ((j (vector-ref ks k)))
+                     (and (or (not empty) (fx< j empty))
+                          (near? j)
+                          (let ((p (vector-ref ps k)) (q (vector-ref qs k)))
+                            (if (fx= 0 (solids p q))
+                                j
+                                (if up?
+                                    ;; the topmost solid row, and the solid rows above it
+                                    (let* ((r (bisect p q (lambda (m) (fx> (solids p m) 0))))
+                                           (e (fx- r (solid-run r -1 r))))
+                                      (loop (bisect (fx+ k 1) n (lambda (i) (fx< (vector-ref qs i) e)))))
+                                    (let* ((r (fx- (bisect p (fx+ q 1) (lambda (m) (fx= 0 (solids m q)))) 1))
+                                           (e (fx+ r (solid-run r 1 (fx- last-row r)))))
+                                      (loop (bisect (fx+ k 1) n (lambda (i) (fx> (vector-ref ps i) e))))))))))))))
+      (if (and empty (near? empty) (or (not found) (fx< empty found)))
+          empty
+          found)))
+
+  ;; The search among pairs (dx, dy) of candidates: dx in order, nearest
+  ;; first, and for each the first free dy, kept when nearer than the best
+  ;; so far (`best` starts as the best straight move; `reach` is at least
+  ;; its length).
+  (define (nearest-free-pair tm x y w h best reach)
+    (let* ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm))
+           (col0 (tilemap-origin-col tm)) (ncols (tilemap-width tm))
+           (row0 (tilemap-origin-row tm)) (nrows (tilemap-height tm))
+           (dxs (list->vector (candidates x w tw reach col0 ncols)))
+           (dys (list->vector (candidates y h th reach row0 nrows)))
+           (up (dy-side dys #t y h th row0 nrows))
+           (down (dy-side dys #f y h th row0 nrows))
+           (table (solid-counts tm)))
+      (let try-x ((i 0) (best best))
+        (if (or (fx= i (vector-length dxs)) (>= (square (vector-ref dxs i)) (norm2 best)))
+            best
+            (let* ((dx (vector-ref dxs i))
+                   (bound (norm2 best))
+                   (span (map-span (+ x dx) w tw col0 ncols))
+                   (j (if span
+                          (let ((u (side-first-free up #t table (car span) (cdr span) dx dys bound (fx- nrows 1)))
+                                (d (side-first-free down #f table (car span) (cdr span) dx dys bound (fx- nrows 1))))
+                            (if (and u d) (fxmin u d) (or u d)))
+                          ;; a box clear of the map's columns is free at any dy
+                          (and (< (norm2 (cons dx (vector-ref dys 0))) bound) 0))))
+              (try-x (fx+ i 1) (if j (cons dx (vector-ref dys j)) best)))))))
+
+)

@@ -1,0 +1,250 @@
+;;; (downstroke motion): steps 2-7 of the pipeline: acceleration, gravity, velocity, and the motion pass that runs them with the tile steps.
+;;;
+;;; docs/physics.org, "The pipeline". Each step is a rule behind its guard
+;;; and skip symbol; motion-pass runs steps 2-7 (and ground detection when
+;;; asked) for a whole frame, through the C kernel motion.c for the
+;;; entities whose numbers it takes, through the rules for any other.
+
+(module (downstroke motion)
+  (apply-acceleration apply-gravity apply-velocity-x apply-velocity-y
+   step-motion motion-pass)
+
+  (import scheme (chicken base) (chicken fixnum) (chicken foreign) srfi-4
+          (downstroke entity) (downstroke scene) (downstroke map) (downstroke c-constants)
+          (downstroke body) (downstroke tuning) (downstroke tile-grid)
+          (downstroke tile-collisions) (downstroke contacts))
+
+  (foreign-declare "#include \"physics/body.h\"")
+  (foreign-declare "#include \"physics/motion.c\"")
+
+  ;;; Per-entity steps, in pipeline order
+
+  ;; Each motion step is its rule (a procedure of the scene and the entity)
+  ;; behind its guard and skip symbol. The rules are docs/physics.org's motion,
+  ;; written once: the steps run them, and so does the motion pass for
+  ;; every entity its C kernel does not take (motion-steps, below).
+
+  ;; The guard of acceleration and gravity.
+  (define (gravity-on? entity) (entity-ref entity #:gravity? #f))
+
+  ;; #:ay is added to #:vy and consumed (set to 0).
+  (define (accelerate scene entity)
+    (let ((ay (num entity #:ay)))
+      (if (and (eq? ay 0) (assq #:ay entity))
+          entity                        ; nothing to consume: no new entity
+          (entity-set (entity-set entity #:vy (sum entity #:vy (num entity #:vy) ay)) #:ay 0))))
+
+  (define (fall scene entity)
+    (entity-set entity #:vy (sum entity #:vy (num entity #:vy) *gravity*)))
+
+  (define (move-x scene entity)
+    (entity-set entity #:x (sum entity #:x (num entity #:x) (num entity #:vx))))
+
+  (define (move-y scene entity)
+    (entity-set entity #:y (sum entity #:y (num entity #:y) (num entity #:vy))))
+
+  (define-pipeline (apply-acceleration acceleration) (scene entity dt)
+    guard: (gravity-on? entity)
+    (accelerate scene entity))
+
+  (define-pipeline (apply-gravity gravity) (scene entity dt)
+    guard: (gravity-on? entity)
+    (fall scene entity))
+
+  (define-pipeline (apply-velocity-x velocity-x) (scene entity dt)
+    (move-x scene entity))
+
+  (define-pipeline (apply-velocity-y velocity-y) (scene entity dt)
+    (move-y scene entity))
+
+  ;;; Steps 2-7 in one pass
+
+  ;; Steps 2-7 of docs/physics.org's pipeline (acceleration, gravity, velocity x, tile
+  ;; collisions x, velocity y, tile collisions y) for one entity, giving
+  ;; exactly what running those six steps one after the other gives: the
+  ;; motion pass of a one-entity frame (below).
+  (define (step-motion scene e dt)
+    ((motion-pass scene dt) e))
+
+  ;; The six steps one after the other, as the pipeline runs them. An
+  ;; entity without #:skip-pipelines has each guard read once and each rule
+  ;; called directly; any other runs the steps themselves.
+  (define (motion-steps scene e dt)
+    (if (entity-ref e #:skip-pipelines #f)  ; a list, or the steps' error
+        (let* ((e (apply-acceleration scene e dt))
+               (e (apply-gravity scene e dt))
+               (e (apply-velocity-x scene e dt))
+               (e (resolve-tile-collisions-x scene e dt))
+               (e (apply-velocity-y scene e dt)))
+          (resolve-tile-collisions-y scene e dt))
+        (let* ((map? (scene-tilemap scene))
+               (e (if (gravity-on? e) (fall scene (accelerate scene e)) e))
+               (e (move-x scene e))
+               (e (if map? (stop-at-tiles-x scene e) e))
+               (e (move-y scene e)))
+          (if map? (stop-at-tiles-y scene e) e))))
+
+  ;; What rewrite-motion's callers pass for a key they leave as it is: the
+  ;; symbol keep, which no value they write (a number or a boolean) can be.
+
+  ;; The entity with the motion keys written: a present key is replaced
+  ;; where it is, in a copy that stops after the last one (the rest is
+  ;; shared); an absent key goes in front, in the order the steps would add
+  ;; them (with gravity vy, ay, x, vx, y; without x, vx, y, vy), and
+  ;; #:on-ground? (ground detection, after them) in front of all.
+  (define (rewrite-motion e grav xp x yp y vxp vx vyp vy ayp ay onp on)
+    (define (replaced? p v) (and p (not (eq? v 'keep))))
+    (define (added? p v) (and (not p) (not (eq? v 'keep))))
+    (let* ((n (fx+ (fx+ (fx+ (if (replaced? xp x) 1 0) (if (replaced? yp y) 1 0))
+                        (if (replaced? onp on) 1 0))
+                   (fx+ (fx+ (if (replaced? vxp vx) 1 0) (if (replaced? vyp vy) 1 0))
+                        (if (replaced? ayp ay) 1 0))))
+           (copy (let copy ((rest e) (n n))
+                   (if (fx= n 0)
+                       rest
+                       (let ((p (car rest)))
+                         (cond ((and (eq? p xp) (replaced? xp x)) (cons (cons #:x x) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p yp) (replaced? yp y)) (cons (cons #:y y) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p vxp) (replaced? vxp vx)) (cons (cons #:vx vx) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p vyp) (replaced? vyp vy)) (cons (cons #:vy vy) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p ayp) (replaced? ayp ay)) (cons (cons #:ay ay) (copy (cdr rest) (fx- n 1))))
+                               ((and (eq? p onp) (replaced? onp on)) (cons (cons #:on-ground? on) (copy (cdr rest) (fx- n 1))))
+                               (else (cons p (copy (cdr rest) n))))))))
+           (add (lambda (p v key out) (if (added? p v) (cons (cons key v) out) out))))
+      (add onp on #:on-ground?
+           (if grav
+               (add yp y #:y (add vxp vx #:vx (add xp x #:x (add ayp ay #:ay (add vyp vy #:vy copy)))))
+               (add vyp vy #:vy (add yp y #:y (add vxp vx #:vx (add xp x #:x copy))))))))
+
+  ;;; The motion pass of a frame
+
+  ;; The exact twin of motion-steps (and of ground detection), in C.
+  ;; CHICKEN compiles every value-producing conditional and loop of such a
+  ;; body into a closure holding its two dozen live values; those closures
+  ;; cost more than the arithmetic and kept the garbage collector busy.
+  ;; This C allocates nothing: it reads the entity's numbers (fixnums
+  ;; within +-2^40, and positions that are exact rationals of such
+  ;; fixnums with denominators below 2^20, so no sum overflows) and
+  ;; `flags`, puts the new values in `out` and returns which keys to write
+  ;; (a key that holds its new value already is not written, as entity-set
+  ;; does). Same formulas in
+  ;; the same order; physics/tests/pipeline-test.scm compares the two paths. The
+  ;; code is motion.c; the flags and answers are motion.h's, by name.
+  ;; Each flag is a Scheme constant, so that the flag expressions of
+  ;; motion-pass fold and stay closure-free (a foreign variable there cost
+  ;; a fifth more instructions in the S1 crowd); the C compiler checks every
+  ;; one against motion.h's value of the same name.
+  (define-c-constant flag-map DS_HAS_MAP 1)
+  (define-c-constant flag-gravity DS_GRAVITY 2)
+  (define-c-constant flag-swept DS_SWEPT 4)
+  (define-c-constant flag-ground DS_GROUND 8)
+  (define-c-constant flag-x DS_HAS_X 16)
+  (define-c-constant flag-y DS_HAS_Y 32)
+  (define-c-constant flag-vx DS_HAS_VX 64)
+  (define-c-constant flag-vy DS_HAS_VY 128)
+  (define-c-constant flag-ay DS_HAS_AY 256)
+  (define-c-constant flag-on DS_HAS_ON 512)
+  (define-c-constant flag-not-here DS_NOT_HERE 1024)
+  (define-c-constant flag-drop DS_DROP 2048)
+  (define-c-constant write-x DS_WRITE_X 1)
+  (define-c-constant write-y DS_WRITE_Y 2)
+  (define-c-constant write-vx DS_WRITE_VX 4)
+  (define-c-constant write-vy DS_WRITE_VY 8)
+  (define-c-constant write-ay DS_WRITE_AY 16)
+  (define-c-constant write-on DS_WRITE_ON 32)
+  (define-c-constant x-ratio DS_X_RATIO 64)
+  (define-c-constant y-ratio DS_Y_RATIO 128)
+
+  (define fixnum-motion!
+    (foreign-lambda scheme-object "ds_fixnum_motion" scheme-object u8vector scheme-object
+                    scheme-object scheme-object scheme-object scheme-object scheme-object
+                    scheme-object scheme-object scheme-object scheme-object scheme-object
+                    scheme-object))
+
+  ;; The kernel's answer for a position: 'keep, out[n-slot], or with the
+  ;; ratio bit the rational out[n-slot] / out[d-slot], in lowest terms
+  ;; already, so the ratnum is made without a gcd.
+  (define (kernel-position out writes write-bit ratio-bit n-slot d-slot)
+    (cond ((fx= 0 (fxand writes write-bit)) 'keep)
+          ((fx= 0 (fxand writes ratio-bit)) (vector-ref out n-slot))
+          (else (##core#inline_allocate ("C_a_i_ratnum" 3) (vector-ref out n-slot)
+                                        (vector-ref out d-slot)))))
+
+  ;; What the C code is given in a scene without a map (it reads neither).
+  (define no-grid (make-u8vector 0))
+  (define no-map (vector 0 0 0 0 1 1))
+
+  ;; What every entity of a frame shares (the map's solid grid, size and
+  ;; origin, the tile size, the scene's collision mode) is read once. Each
+  ;; entity whose numbers the kernel takes (above), with no
+  ;; #:skip-pipelines, then goes through fixnum-motion!; any other one
+  ;; (flonums, other rationals, bignums, a NaN, skips, an unknown mode)
+  ;; through motion-steps, the readable steps.
+  ;; With ground? the pass also does ground detection (step 8), which
+  ;; is only right when no entity of the scene is solid: the engine passes
+  ;; it then, and only then.
+  (define (motion-pass scene dt #!optional ground?)
+    (let* ((tm (scene-tilemap scene))
+           (map-data (and tm (pass-map tm)))
+           (map? (and map-data #t))
+           (bytes (if map? (tilemap-solid-grid tm) no-grid))
+           (map (or map-data no-map))
+           (one-way? (and map? (one-way-map? tm)))
+           ;; the bits of fixnum-motion!'s flags the scene decides
+           (scene-flags (fxior (if map? flag-map 0)
+                               (fxior (if (and map? (swept-mode? scene '() #f)) flag-swept 0)
+                                      (if ground? flag-ground 0))))
+           ;; an entity's own mode replaces the scene's
+           (own-mode-flags (fxand scene-flags (fxnot flag-swept)))
+           (gravity *gravity*)
+           (out (make-vector 8 1)))
+      ;; An entity the C code leaves (see above).
+      (define (general e)
+        (let ((moved (motion-steps scene e dt)))
+          (if ground? (detect-on-solid scene moved dt) moved)))
+      (if (and tm (not map?))
+          general
+          (lambda (e)
+            (entity-let e ((xp #:x) (yp #:y) (wp #:width) (hp #:height) (vxp #:vx) (vyp #:vy)
+                           (ayp #:ay) (gp #:gravity?) (skipp #:skip-pipelines)
+                           (modep #:collision-mode) (onp #:on-ground?) (dropp #:drop-through?))
+              (let ((grav (and gp (cdr gp)))
+                    (x (if xp (cdr xp) 0)) (y (if yp (cdr yp) 0))
+                    (w (if wp (cdr wp) 0)) (h (if hp (cdr hp) 0))
+                    (vx (if vxp (cdr vxp) 0)) (vy (if vyp (cdr vyp) 0))
+                    (ay (if ayp (cdr ayp) 0))
+                    (own (and modep (cdr modep))))
+                ;; Written as plain expressions, not nested conditionals, so
+                ;; that CHICKEN makes no closures here (see above).
+                (let* ((flags (fxior
+                               ;; an unknown mode is the tile steps' error to raise
+                               (fxior (fxior (if own own-mode-flags scene-flags)
+                                             (if (and one-way? dropp (cdr dropp)) flag-drop 0))
+                                      (fxior (if (eq? own 'swept) flag-swept 0)
+                                             (if (memq own '(#f swept discrete)) 0 flag-not-here)))
+                               (fxior (fxior (if grav flag-gravity 0) (if xp flag-x 0))
+                                      (fxior (fxior (if yp flag-y 0) (if vxp flag-vx 0))
+                                             (fxior (if vyp flag-vy 0)
+                                                    (fxior (if ayp flag-ay 0) (if onp flag-on 0)))))))
+                       (writes (fixnum-motion! out bytes map flags gravity (and skipp (cdr skipp))
+                                               x y w h vx vy ay (and onp (cdr onp)))))
+                  (cond ((fx= writes 0) e)
+                        ((fx< writes 0) (general e))
+                        ((fx= 0 (fxand writes (fxior x-ratio y-ratio)))
+                         (rewrite-motion e grav
+                                         xp (if (fx= 0 (fxand writes write-x)) 'keep (vector-ref out 0))
+                                         yp (if (fx= 0 (fxand writes write-y)) 'keep (vector-ref out 1))
+                                         vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
+                                         vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
+                                         ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
+                                         onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))
+                        (else                   ; a rational position
+                         (rewrite-motion e grav
+                                         xp (kernel-position out writes write-x x-ratio 0 6)
+                                         yp (kernel-position out writes write-y y-ratio 1 7)
+                                         vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
+                                         vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
+                                         ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
+                                         onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))))))))))
+
+)
