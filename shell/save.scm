@@ -166,7 +166,13 @@ EOF
     (unless (and (string? dir) (> (string-length dir) 0))
       (fail who "the directory must be a non-empty string, got ~s" dir)))
 
-  (define (shown s) (if (> (string-length s) 60) (string-append (substring s 0 60) "...") s))
+  ;; A path in a message: whole, unless it is very long (a hostile name
+  ;; over PATH_MAX); then its start and its end, where the file's own name is.
+  (define (shown s)
+    (let ((n (string-length s)))
+      (if (> n 160)
+          (string-append (substring s 0 60) "..." (substring s (- n 80) n))
+          s)))
 
   ;; Why the system cannot be handed this path, or #f.
   (define (path-problem path)

@@ -115,6 +115,24 @@
               (save-data-read sv-dir 'dir))
   (test "... or the default" 'dflt (save-data-read sv-dir 'dir 'dflt)))
 
+(test-group "save: an error names the file however deep its directory"
+  ;; a directory path of over 100 characters, as a temporary directory
+  ;; inside a home or a CI checkout gives
+  (let* ((deep (string-append sv-dir "/" (make-string 100 #\d)))
+         (deeper (string-append deep "/" (make-string 200 #\e))))
+    (for-each (lambda (d) (create-directory d #t)) (list deep deeper))
+    (for-each (lambda (d)
+                (with-output-to-file (string-append d "/broken.scm") (lambda () (display "(1 2")))
+                (test-error (sprintf "a directory path of ~a characters: the file's own name is shown"
+                                     (string-length d))
+                            (lambda (e) (and (save-data-error? e) (sv-says? e "broken.scm" "corrupt")))
+                            (save-data-read d 'broken)))
+              (list deep deeper))
+    (test-error "a path too long to show whole: its start, then its end"
+                (lambda (e) (sv-says? e (substring sv-dir 0 (min 10 (string-length sv-dir))) "..." "eeee/broken.scm"))
+                (save-data-read deeper 'broken))
+    (delete-directory deep #t)))
+
 (test-group "save: reading evaluates nothing"
   (let ((ran #f))
     (define-reader-ctor 'boom (lambda () (set! ran #t) 1))
