@@ -477,7 +477,11 @@
                                   (rc-send fd (string-append secret "\n(make-string 20000000 #\\a)\n"))
                                   (file-write sent-out "s")
                                   (file-read told-in 1)
-                                  (let-values (((n ended?) (rc-drain fd 10000)))
+                                  ;; the game may still be writing the answer when this
+                                  ;; starts (on a loaded machine, seconds): wait up to a
+                                  ;; minute for each piece, so that only a game that never
+                                  ;; drops the client fails
+                                  (let-values (((n ended?) (rc-drain fd 60000)))
                                     (if (and ended? (< n 20000000)) 0 1)))))))
             (file-read sent-in 1)
             (goes-on "while a client reads none of a large answer")
