@@ -205,8 +205,9 @@
   ;;; follows and the frame is drawn; changes are made in the order they
   ;;; were asked for. Asked for between frames (create:, the REPL) a change
   ;;; is made at once. A change with a transition plays its first half,
-  ;;; the game frozen, makes the change, then plays its second half while
-  ;;; the new state runs; changes asked for meanwhile wait for its end.
+  ;;; the game frozen, makes the change (and those its hooks ask for),
+  ;;; then plays its second half while the new state runs; changes asked
+  ;;; for meanwhile wait for its end.
 
   (define-record-type game-state
     (make-game-state update render enter leave resume update-below? draw-below?)
@@ -368,11 +369,28 @@
                  (if (>= time (transition-out t))
                      (begin (vector-set! tr 2 'in)
                             (vector-set! tr 3 0)
-                            (let ((r (vector-ref tr 0)))
-                              (make-change! game (car r) (cadr r))))
+                            (midpoint! game tr))
                      (vector-set! tr 3 time)))
                 ((>= time (transition-in t)) (game-transition-set! game #f))
                 (else (vector-set! tr 3 time)))))))
+
+  ;; The change, under the full cover; the changes its own hooks (or
+  ;; game-transition!'s procedure) ask for are made now too, those that
+  ;; waited for the transition after its second half.
+  (define (midpoint! game tr)
+    (let ((waiting (game-requests game))
+          (r (vector-ref tr 0)))
+      (game-requests-set! game '())
+      (game-transition-set! game #f)
+      (let ((was (game-in-frame? game)))
+        (dynamic-wind
+         (lambda () (game-in-frame-set! game #t))
+         (lambda () (make-change! game (car r) (cadr r)))
+         (lambda () (game-in-frame-set! game was))))
+      (carry-out-requests! game)
+      ;; the second half plays, unless those started a transition of their own
+      (unless (game-transition game) (game-transition-set! game tr))
+      (game-requests-set! game (append (game-requests game) waiting))))
 
   ;;; The layers of the stack, top first: a state record, or 'game for
   ;;; the game's own hooks.

@@ -190,3 +190,14 @@
     (game-run! g frames: 1 screenshot: (string-append dir "/m.png"))
     (test "draw-below?: #f draws only the top state" '(menu) log)
     (test "over a cleared frame" '(0 0 0 255) (png-pixel (string-append dir "/m.png") 4 4))))
+
+(test-group "states: changes asked for at a transition's midpoint are made under its cover"
+  (let ((g (make-game)))
+    (game-add-state! g 'title)
+    (game-scene-set! g (st-ball-scene))
+    (game-transition! g (lambda (g) (game-state-push! g 'title)) transition: (make-transition out: 16 in: 32))
+    (game-step! g)
+    (test "the push its procedure asked for is made at the midpoint" '(title #f) (game-state-stack g))
+    (test "while the second half still plays" #t (game-transitioning? g))
+    (st-steps! g 2)
+    (test "which then ends" #f (game-transitioning? g))))
