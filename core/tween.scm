@@ -16,7 +16,9 @@
 ;;;   - A tween makes 1 + repeat runs (repeat -1: it never finishes).
 ;;;     Time left over when a run ends carries into the next run, so a
 ;;;     tween's state depends only on the total time it was given, not on
-;;;     how that time was split into steps.
+;;;     how that time was split into steps. A step that ends a run writes
+;;;     that run's end values exactly (every turn of a yoyo shows, even
+;;;     between two frames); the time past it shows from the next step.
 ;;;   - With yoyo? every odd-numbered run (the 2nd, 4th, ...) plays the run
 ;;;     backwards in time, from target to start: its value at time u into
 ;;;     the run is the forward value at time (duration - u). An asymmetric
