@@ -409,7 +409,12 @@
   ;; (below?: update-below? or draw-below?), and whether the bottom one,
   ;; whose scene it is, is among them.
   (define (reached game below?)
-    (let loop ((ls (layers game)) (out '()))
+    (if (null? (game-state-stack* game))
+        (values '(game) #t)             ; no state: the game's own hooks
+        (reached-through (layers game) below?)))
+
+  (define (reached-through layers below?)
+    (let loop ((ls layers) (out '()))
       (cond ((null? (cdr ls)) (values (cons (car ls) out) #t))
             ((and (game-state? (car ls)) (below? (car ls))) (loop (cdr ls) (cons (car ls) out)))
             (else (values (cons (car ls) out) #f)))))
