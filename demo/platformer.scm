@@ -87,8 +87,10 @@
         #:tileset "tiles" #:tile-id 4 #:scale-x 3 #:origin-x 0 #:origin-y 0
         #:color '(196 146 84)))
 
-;; A lift over the second pit: a tween moves it up and down for ever (its
-;; velocity steps are skipped), and it carries its rider by what it did.
+;; A lift over the second pit: a tween sequence moves it up, waits half a
+;; second at the top, down, and waits at the bottom, for ever (its
+;; velocity steps are skipped); it carries its rider by what it did. Each
+;; end is reached exactly (y 120, y 200), whatever the frame length.
 ;; It is the stone tile (gid 8) squeezed to 32 x 8.
 (define lift
   (let ((e (plist->entity
@@ -96,8 +98,11 @@
                   #:solid? #t #:immovable? #t #:color '(150 150 170)
                   #:tileset "tiles" #:tile-id 8 #:scale-x 2 #:scale-y 1/2 #:origin-x 0 #:origin-y 0
                   #:skip-pipelines '(velocity-x velocity-y)))))
-    (entity-set e #:tween (make-tween e props: '((#:y . 120)) duration: 2000
-                                      ease: 'quad-in-out repeat: -1 yoyo?: #t))))
+    (entity-set e #:tween (tween-sequence (tween-to '((#:y . 120)) duration: 2000 ease: 'quad-in-out)
+                                          (tween-wait 500)
+                                          (tween-to '((#:y . 200)) duration: 2000 ease: 'quad-in-out)
+                                          (tween-wait 500)
+                                          repeat: -1))))
 
 ;; The camera glides after the player and lets it move inside a box
 ;; before it follows (docs/scenes.org).
