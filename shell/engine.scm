@@ -323,9 +323,12 @@
   ;;; when none is due the loop sleeps until the next one. One logical
   ;;; frame: the events polled with input-poll-events! (only the first frame of a catch-up batch
   ;;; sees them) -> the input state (game-input), or the script's state ->
-  ;;; the scene's engine update -> update: (game dt) -> camera follow; then,
-  ;;; once per loop that ran a frame: render-scene! (or a black clear when
-  ;;; there is no scene), render: (game), the overlay's readout when the
+  ;;; the scene's timers and engine update -> update: (game dt) -> the
+  ;;; state changes asked for -> camera follow (game-step!: no engine
+  ;;; update nor camera follow while a pushed state freezes the scene);
+  ;;; then, once per loop that ran a frame: render-scene! (or a black clear
+  ;;; when there is no scene, or the states drawn hide it), the render:
+  ;;; hooks, a transition's cover, the overlay's readout when the
   ;;; game is in debug mode, the letterbox bars (when the window's shape is
   ;;; not the game's), present. dt is always frame-delay. Each frame reads
   ;;; the game's input configuration anew (game-input-config-set!), and a

@@ -200,9 +200,10 @@
   ;;; stop, unless the upper state says update-below?: #t; they are still
   ;;; drawn, under it, unless it says draw-below?: #f.
   ;;;
-  ;;; A change asked for while a frame runs (in update:, render:, a
-  ;;; callback) is made when the frame's hooks are done, before the camera
-  ;;; follows and the frame is drawn; changes are made in the order they
+  ;;; A change asked for while a frame runs (in update:, a callback) is
+  ;;; made when the frame's update: hooks are done, before the camera
+  ;;; follows and the frame is drawn (asked for in render:, once the
+  ;;; render: hooks have drawn); changes are made in the order they
   ;;; were asked for. Asked for between frames (create:, the REPL) a change
   ;;; is made at once. A change with a transition plays its first half,
   ;;; the game frozen, makes the change (and those its hooks ask for),
@@ -263,9 +264,8 @@
     (draw transition-draw))
 
   (define/keywords (make-transition #!key (out 250) (in 250) (draw #f))
-    (define (ms? v) (and (real? v) (exact? v) (>= v 0)))
     (define (check-ms what v)
-      (unless (or (ms? v) (and (real? v) (finite? v) (>= v 0)))
+      (unless (and (real? v) (finite? v) (>= v 0))
         (error 'make-transition (sprintf "~a must be a finite number of ms >= 0, got ~s" what v))))
     (check-ms "out:" out)
     (check-ms "in:" in)
@@ -448,10 +448,15 @@
   (define (scene-drawn? game)
     (receive (ls bottom?) (reached game game-state-draw-below?) bottom?))
 
-  ;; The render: hooks of the layers drawn, bottom first.
+  ;; The render: hooks of the layers drawn, bottom first; the changes
+  ;; they ask for are made once they have drawn.
   (define (run-render-hooks! game)
     (receive (ls bottom?) (reached game game-state-draw-below?)
-      (for-each (lambda (l) (let ((h (layer-render l game))) (when h (h game)))) ls)))
+      (dynamic-wind
+       (lambda () (game-in-frame-set! game #t))
+       (lambda () (for-each (lambda (l) (let ((h (layer-render l game))) (when h (h game)))) ls))
+       (lambda () (game-in-frame-set! game #f))))
+    (carry-out-requests! game))
 
   ;; The transition's cover, when one plays.
   (define (draw-transition! game)

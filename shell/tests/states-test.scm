@@ -201,3 +201,13 @@
     (test "while the second half still plays" #t (game-transitioning? g))
     (st-steps! g 2)
     (test "which then ends" #f (game-transitioning? g))))
+
+(test-group "states: a change asked for in render: is made once the render: hooks have drawn"
+  (let* ((log '())
+         (g (make-game headless?: #t width: 8 height: 8)))
+    (game-add-state! g 'a render: (lambda (g) (set! log (cons 'a log)) (game-state-push! g 'b)))
+    (game-add-state! g 'b render: (lambda (g) (set! log (cons 'b log))) enter: (lambda (g) (set! log (cons 'enter-b log))))
+    (game-state-set! g 'a)
+    (game-run! g frames: 1)
+    (test "a's render: drew, then b was entered" '(a enter-b) (reverse log))
+    (test "b is over a" '(b a) (game-state-stack g))))
