@@ -153,7 +153,8 @@
   ;; transition's first half plays) the scene is frozen: no engine update,
   ;; no camera follow (game.scm, "Named game states").
   (define (game-step! game #!optional (dt (game-frame-delay game)))
-    (let ((runs? (begin-frame! game)))
+    (let ((runs? (begin-frame! game))
+          (done? #f))
       (dynamic-wind
        void
        (lambda ()
@@ -162,9 +163,11 @@
            (run-update-hooks! game dt)
            (profile-set! game 0 (- t1 t0))
            (profile-set! game 1 (- (now-ms) t1))
-           (profile-set! game 2 0)))           ; until the frame is drawn
+           (profile-set! game 2 0))            ; until the frame is drawn
+         (set! done? #t))
        ;; an error in a hook leaves no frame open (the REPL goes on)
-       (lambda () (end-frame! game dt runs?)))
+       (lambda () (unless done? (abandon-frame! game))))
+      (end-frame! game dt runs?)
       (let ((scene (game-scene game)))
         (when (and scene runs?)
           (game-scene-set! game (scene-follow-camera scene (game-width game)

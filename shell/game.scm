@@ -20,7 +20,8 @@
    game-frame-set! game-surface-set! game-recording-set! game-textures-set!
    active-update-hook active-render-hook game-profile %game-input-config-set! game-draw-clock
    game-fullscreen-flag game-fullscreen-flag-set!
-   begin-frame! run-update-hooks! end-frame! scene-drawn? run-render-hooks! draw-transition!)
+   begin-frame! run-update-hooks! end-frame! abandon-frame! scene-drawn? run-render-hooks!
+   draw-transition!)
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken condition) (chicken string)
@@ -443,6 +444,10 @@
     (game-in-frame-set! game #f)
     (advance-transition! game dt)
     (carry-out-requests! game))
+
+  ;; A frame a hook's error ended: the changes it asked for wait (for the
+  ;; next frame's end, or one asked for between frames, as from the REPL).
+  (define (abandon-frame! game) (game-in-frame-set! game #f))
 
   ;; Whether the scene is drawn under the states' render: hooks.
   (define (scene-drawn? game)

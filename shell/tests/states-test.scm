@@ -211,3 +211,12 @@
     (game-run! g frames: 1)
     (test "a's render: drew, then b was entered" '(a enter-b) (reverse log))
     (test "b is over a" '(b a) (game-state-stack g))))
+
+(test-group "states: an error in update: leaves no frame open"
+  (let ((g (make-game update: (lambda (g dt) (game-state-push! g 'a) (error "boom")))))
+    (game-add-state! g 'a)
+    (game-add-state! g 'b)
+    (test-error "the error reaches the caller" (game-step! g))
+    (test "the change asked for before it waits" #f (game-current-state g))
+    (game-state-set! g 'b)
+    (test "one asked for between frames is made at once, after the one waiting" '(b) (game-state-stack g))))
