@@ -18,6 +18,9 @@
 ;;;      (r g b [a]), a filled #:width x #:height rectangle of that colour
 ;;;      (alpha below 255 blends); else nothing. An entity whose #:tile-id
 ;;;      cannot be drawn (no tileset or texture) falls through to #:color.
+;;;      An entity with #:animations and no #:tile-id yet (the pipeline
+;;;      has not run) is drawn with its current frame's tile
+;;;      (animation.scm's animation-tile).
 ;;;      #:tile-id numbers tiles as gids of the scene's tileset: local tile
 ;;;      id + the tileset's first gid (1 for a map's first tileset), the same
 ;;;      numbers the map's cells use.
