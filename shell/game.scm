@@ -342,6 +342,10 @@
   ;; The requests waiting, in order, until one starts a transition (the
   ;; rest then wait for its end). Requests their hooks make join the queue.
   (define (carry-out-requests! game)
+    (when (and (pair? (game-requests game)) (not (game-transition game)))
+      (carry-out-queue! game)))
+
+  (define (carry-out-queue! game)
     (let ((was (game-in-frame? game)))
       (dynamic-wind
        (lambda () (game-in-frame-set! game #t))
