@@ -65,6 +65,8 @@
       (error 'step-scene-timers (sprintf "~a returned ~s, not a scene" what result)))
     result)
 
+  (define (checked-timer t) (check-timer 'step-scene-timers t) t)
+
   ;; Each timer in turn, the scene its callbacks return passed on; finished
   ;; ones are dropped. Timers a callback adds start on the next step.
   (define (step-scene-timers scene dt)
@@ -74,6 +76,6 @@
           (let loop ((ts timers) (s (update-scene scene timers: '())) (kept '()))
             (if (null? ts)
                 (update-scene s timers: (append (reverse kept) (scene-timers s)))
-                (receive (t2 s2 left held?) (track-step (car ts) s dt scene-result)
+                (receive (t2 s2 left held?) (track-step (checked-timer (car ts)) s dt scene-result)
                   (unless (scene? s2) (scene-result "a timer" s2))
                   (loop (cdr ts) s2 (if left kept (cons t2 kept))))))))))

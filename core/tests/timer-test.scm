@@ -68,6 +68,9 @@
               (timer-every 10 tm-spawn count: 0))
   (test-error "every 0 ms for ever is refused" (tm-raised? 'timer-every "ms")
               (timer-every 0 tm-spawn))
+  (test-error "a scene's timers: holding something else is named when stepped"
+              (tm-raised? 'step-scene-timers "soon")
+              (step-scene-timers (make-sprite-scene timers: (list 'soon)) 16))
   (test-error "scene-add-timer of something else names it" (tm-raised? 'scene-add-timer "soon")
               (scene-add-timer (make-sprite-scene) 'soon)))
 
