@@ -9,6 +9,10 @@
 ;;;               left out only when every frame carries one
 ;;;   #:loop?     #f makes the animation one-shot; absent or anything else
 ;;;               means it loops
+;;;   #:events    optional, ((frame-index . event) ...): on the step that
+;;;               starts showing that frame, the step writes #:anim-event
+;;;               = event (a footstep, an attack's hit frame); on the other
+;;;               steps #:anim-event is absent
 ;;;
 ;;; An entity animates when it has #:animations (a list of animations).
 ;;; apply-animation keeps its state in
@@ -39,11 +43,13 @@
 ;;;
 ;;; set-animation does not write #:tile-id: the new animation's first frame
 ;;; appears on the next apply-animation, and from then on it is shown for
-;;; exactly its duration.
+;;; exactly its duration. Until an entity has a #:tile-id the renderer
+;;; draws the tile animation-tile gives (the current frame's), so an
+;;; animated entity shows its first frame before the pipeline ever ran.
 
 (module (downstroke animation)
   (apply-animation set-animation animation-frame-duration
-   animation-frame-tile animation-named)
+   animation-frame-tile animation-named animation-tile)
 
   (import scheme (chicken base) (chicken format) (downstroke entity))
 
@@ -151,10 +157,43 @@
              (e (entity-set e #:anim-frame frame2))
              (e (entity-set e #:anim-tick tick2))
              (e (entity-set e #:tile-id (animation-frame-tile anim frame2)))
-             (e (entity-set e #:anim-duration duration2)))
+             (e (entity-set e #:anim-duration duration2))
+             ;; the frame starts being shown on this step: after a move,
+             ;; a one-frame loop's restart, or the animation's first step
+             (started? (if advance? (or (not (= frame2 frame)) loops?) (= tick 0)))
+             (e (frame-event e anim frame2 started?)))
         (if (and (not loops?) (= frame2 last) (>= tick2 duration2))
             (entity-set e #:anim-finished? #t)
             e))))
+
+  ;; #:anim-event for the step: the frame's event when it starts, else none.
+  (define (frame-event e anim frame started?)
+    (let* ((events (entity-ref anim #:events '()))
+           (hit (and started? (pair? events) (frame-event-of e anim events frame))))
+      (cond (hit (entity-set e #:anim-event (cdr hit)))
+            ((assq #:anim-event e) (entity-remove e #:anim-event))
+            (else e))))
+
+  (define (frame-event-of e anim events frame)
+    (unless (and (list? events)
+                 (let ok ((es events))
+                   (or (null? es) (and (pair? (car es)) (exact-integer? (caar es)) (ok (cdr es))))))
+      (error 'apply-animation
+             (sprintf "entity ~a: animation ~s: #:events must be a list of (frame-index . event), got ~s"
+                      (entity-label e) (animation-name anim) events)))
+    (assv frame events))
+
+  ;; The tile the entity's animation shows now: its current animation
+  ;; (#:anim-name, else the first) at #:anim-frame (else 0); #f for an
+  ;; entity without #:animations.
+  (define (animation-tile e)
+    (let ((animations (entity-ref e #:animations #f)))
+      (and animations
+           (let* ((animations (entity-animations 'animation-tile e))
+                  (anim (lookup 'animation-tile e animations (current-name e animations)))
+                  (frame (state-number 'animation-tile e #:anim-frame))
+                  (last (- (length (animation-frames 'animation-tile anim)) 1)))
+             (animation-frame-tile anim (min frame last))))))
 
   ;; Switch to animation `name` from its first frame. Calling it with the
   ;; current animation's name changes nothing, so a game may call it every

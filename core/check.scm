@@ -29,7 +29,7 @@
       #:gravity? #:on-ground? #:solid? #:immovable? #:one-way? #:drop-through?
       #:frame-start #:skip-pipelines #:collision-mode #:tween
       #:group-id #:group-origin? #:group-local-x #:group-local-y
-      #:animations #:anim-name #:anim-frame #:anim-tick #:anim-duration #:anim-finished?
+      #:animations #:anim-name #:anim-frame #:anim-tick #:anim-duration #:anim-finished? #:anim-event
       #:tile-id #:color #:facing
       ;; sprites and particles (renderer.scm, particles.scm)
       #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y #:flip-x? #:flip-y?

@@ -10,7 +10,8 @@
    scene-solid-entities
    scene-map-entities scene-transform-entities
    scene-add-entity scene-remove-entities scene-find-tagged scene-find-all-tagged
-   scene-follow-camera scene-problems scene-checks)
+   scene-follow-camera scene-problems scene-checks
+   scene-timers)
 
   ;; a scene is made with its camera: the camera's names come with it
   (import (chicken module))
@@ -27,7 +28,7 @@
   ;; every new scene starts without it.
   (define-record-type scene
     (%make-scene entities tilemap tileset tileset-texture camera camera-target
-                 background engine-update collision-mode tilesets solids)
+                 background engine-update collision-mode tilesets timers solids)
     scene?
     (entities scene-entities)
     (tilemap scene-tilemap)
@@ -39,6 +40,8 @@
     (engine-update scene-engine-update)
     (collision-mode scene-collision-mode)
     (tilesets scene-tilesets)
+    ;; timers and scripts of waits and calls ((downstroke timer))
+    (timers scene-timers)
     (solids scene-solids-cache scene-solids-cache-set!))
 
   (define (check-engine-update eu)
@@ -91,27 +94,35 @@
       (error who "tilesets: must be a list of tilesets (load-tileset, make-sheet-tileset)" tss))
     tss)
 
+  ;; timers: a list of what (downstroke timer) steps; their kind is
+  ;; checked there, when they are added or stepped.
+  (define (check-timers who ts)
+    (unless (list? ts)
+      (error who "timers: must be a list (timer-after, timer-every, tween-sequence ...)" ts))
+    ts)
+
   ;; camera-target: the tag of the entity the camera centres on after each
   ;; update: ('camera-target unless given), or #f for a camera that stays put.
   (define/keywords (make-scene #!key (entities '()) (tilemap #f) (tileset #f)
                       (tileset-texture #f) (camera (make-camera))
                       (camera-target 'camera-target) (background #f)
                       (engine-update #f) (collision-mode *default-collision-mode*)
-                      (tilesets '()))
+                      (tilesets '()) (timers '()))
     (%make-scene (check-entities entities) tilemap tileset tileset-texture
                  camera camera-target background
                  (check-engine-update engine-update)
                  (check-collision-mode collision-mode)
-                 (check-tilesets 'make-scene tilesets) #f))
+                 (check-tilesets 'make-scene tilesets)
+                 (check-timers 'make-scene timers) #f))
 
   ;; A scene with no map: sprites over a background.
   (define/keywords (make-sprite-scene #!key (entities '()) (tileset #f) (tileset-texture #f)
                              (camera (make-camera)) (camera-target 'camera-target)
-                             (background #f) (engine-update #f) (tilesets '()))
+                             (background #f) (engine-update #f) (tilesets '()) (timers '()))
     (make-scene entities: entities tileset: tileset tileset-texture: tileset-texture
                 camera: camera camera-target: camera-target background: background
                 engine-update: engine-update collision-mode: *default-collision-mode*
-                tilesets: tilesets))
+                tilesets: tilesets timers: timers))
 
   ;; A marker for "keyword not given", distinct from every value a user passes.
   (define unset (list 'unset))
@@ -120,7 +131,7 @@
   (define/keywords (update-scene s #!key (entities unset) (tilemap unset) (tileset unset)
                         (tileset-texture unset) (camera unset) (camera-target unset)
                         (background unset) (engine-update unset) (collision-mode unset)
-                        (tilesets unset))
+                        (tilesets unset) (timers unset))
     (let ((pick (lambda (new old) (if (given? new) new old))))
       (%make-scene (if (given? entities) (check-entities entities (quote update-scene)) (scene-entities s))
                    (pick tilemap (scene-tilemap s))
@@ -136,6 +147,7 @@
                        (check-collision-mode collision-mode)
                        (scene-collision-mode s))
                    (if (given? tilesets) (check-tilesets 'update-scene tilesets) (scene-tilesets s))
+                   (if (given? timers) (check-timers 'update-scene timers) (scene-timers s))
                    ;; the cache survives only when the entity list does
                    (if (given? entities) #f (scene-solids-cache s)))))
 
@@ -143,7 +155,8 @@
   (define (with-entities s entities)
     (%make-scene entities (scene-tilemap s) (scene-tileset s) (scene-tileset-texture s)
                  (scene-camera s) (scene-camera-target s) (scene-background s)
-                 (scene-engine-update s) (scene-collision-mode s) (scene-tilesets s) #f))
+                 (scene-engine-update s) (scene-collision-mode s) (scene-tilesets s)
+                 (scene-timers s) #f))
 
   (define (scene-solid-entities s)
     (or (scene-solids-cache s)

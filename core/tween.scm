@@ -16,7 +16,9 @@
 ;;;   - A tween makes 1 + repeat runs (repeat -1: it never finishes).
 ;;;     Time left over when a run ends carries into the next run, so a
 ;;;     tween's state depends only on the total time it was given, not on
-;;;     how that time was split into steps.
+;;;     how that time was split into steps. A step that ends a run writes
+;;;     that run's end values exactly (every turn of a yoyo shows, even
+;;;     between two frames); the time past it shows from the next step.
 ;;;   - With yoyo? every odd-numbered run (the 2nd, 4th, ...) plays the run
 ;;;     backwards in time, from target to start: its value at time u into
 ;;;     the run is the forward value at time (duration - u). An asymmetric
@@ -51,7 +53,11 @@
 
 (module (downstroke tween)
   (make-tween tween? tween-step tween-finished? tween-active?
-   step-tweens *ease-table* ease-procedure)
+   step-tweens *ease-table* ease-procedure
+   tween-to tween-wait tween-call tween-sequence tween-parallel
+   tween-track? tween-track-name entity-add-tween
+   ;; for sibling modules only: (downstroke timer) steps a scene's timers
+   track-step)
 
   (import (downstroke keywords) (only (downstroke numbers) finite-real? lerp))
   (import scheme (chicken base) (chicken format) (chicken keyword)
@@ -149,9 +155,11 @@
   ;; props: list of (key start . target)
   ;; delay-left: delay still to run; run: index of the current run (0-based);
   ;; run-time: time into the current run.
+  ;; lazy?: made by tween-to, its starts not read yet (each prop's start
+  ;; is #f until the first run begins and reads them from the entity).
   (define-record-type tween
     (%make-tween props duration delay ease on-complete repeat yoyo?
-                 delay-left run run-time finished?)
+                 delay-left run run-time finished? lazy?)
     tween?
     (props tween-props)
     (duration tween-duration)
@@ -163,7 +171,8 @@
     (delay-left tween-delay-left)
     (run tween-run)
     (run-time tween-run-time)
-    (finished? tween-finished?))
+    (finished? tween-finished?)
+    (lazy? tween-lazy?))
 
   (set-record-printer! tween
     (lambda (t port)
@@ -178,62 +187,85 @@
     (unless (and (finite-real? x) (>= x 0))
       (error who (sprintf "~a: expected a finite real number >= 0, got ~s" what x))))
 
-  ;; Each prop: (key . target) with a finite real target and a key the
-  ;; entity holds as a finite real number (its start value).
-  (define (check-props e props)
+  ;; Each prop: (key . target) with a keyword given once and a finite
+  ;; real target; who: the procedure the error is reported from.
+  (define (check-targets who props)
     (unless (list? props)
-      (error 'make-tween
+      (error who
              (sprintf "props: expected an alist of (keyword . target), got ~s" props)))
-    (let loop ((rest props) (seen '()) (out '()))
-      (if (null? rest)
-          (reverse out)
-          (let ((p (car rest)))
-            (unless (and (pair? p) (keyword? (car p)))
-              (error 'make-tween
-                     (sprintf "props: expected (keyword . target) pairs, got ~s in ~s"
-                              p props)))
-            (let ((key (car p)) (target (cdr p)))
-              (when (memq key seen)
-                (error 'make-tween (sprintf "props: key ~s given twice" key)))
-              (unless (finite-real? target)
-                (error 'make-tween
-                       (sprintf "props: target of ~s must be a finite real number, got ~s"
-                                key target)))
-              (let ((start (assq key e)))
-                (unless start
-                  (error 'make-tween
-                         (sprintf "props: entity ~a has no key ~s to tween"
-                                  (entity-label e) key)))
-                (unless (finite-real? (cdr start))
-                  (error 'make-tween
-                         (sprintf "props: entity ~a has ~s = ~s, not a finite real number"
-                                  (entity-label e) key (cdr start))))
-                (loop (cdr rest) (cons key seen)
-                      (cons (cons key (cons (cdr start) target)) out))))))))
+    (let loop ((rest props) (seen '()))
+      (unless (null? rest)
+        (let ((p (car rest)))
+          (unless (and (pair? p) (keyword? (car p)))
+            (error who
+                   (sprintf "props: expected (keyword . target) pairs, got ~s in ~s"
+                            p props)))
+          (when (memq (car p) seen)
+            (error who (sprintf "props: key ~s given twice" (car p))))
+          (unless (finite-real? (cdr p))
+            (error who
+                   (sprintf "props: target of ~s must be a finite real number, got ~s"
+                            (car p) (cdr p))))
+          (loop (cdr rest) (cons (car p) seen))))))
+
+  ;; The start of a prop: the entity's value of `key`, a finite real.
+  (define (start-value who e key)
+    (let ((start (assq key e)))
+      (unless start
+        (error who
+               (sprintf "props: entity ~a has no key ~s to tween"
+                        (entity-label e) key)))
+      (unless (finite-real? (cdr start))
+        (error who
+               (sprintf "props: entity ~a has ~s = ~s, not a finite real number"
+                        (entity-label e) key (cdr start))))
+      (cdr start)))
+
+  ;; props -> ((key start . target) ...), starts read from e now.
+  (define (check-props e props)
+    (check-targets 'make-tween props)
+    (map (lambda (p) (cons (car p) (cons (start-value 'make-tween e (car p)) (cdr p)))) props))
+
+  ;; The options make-tween and tween-to share, checked; who names the
+  ;; procedure in errors.
+  (define (check-options who props duration delay repeat yoyo? on-complete)
+    (unless props
+      (error who "props: required, an alist of (keyword . target)"))
+    (check-time who "duration" duration)
+    (check-time who "delay" delay)
+    (unless (and (exact-integer? repeat) (>= repeat -1))
+      (error who
+             (sprintf "repeat: expected an exact integer >= 0, or -1 for forever, got ~s"
+                      repeat)))
+    (when (and (= repeat -1) (zero? duration))
+      (error who
+             "repeat: -1 (forever) needs a duration > 0, got duration 0"))
+    (unless (boolean? yoyo?)
+      (error who (sprintf "yoyo?: expected #t or #f, got ~s" yoyo?)))
+    (unless (or (not on-complete) (procedure? on-complete))
+      (error who
+             (sprintf "on-complete: expected a procedure or #f, got ~s" on-complete))))
 
   (define/keywords (make-tween entity #!key props (duration 500) (delay 0) (ease 'linear)
                       (on-complete #f) (repeat 0) (yoyo? #f))
     (let ((e (as-entity entity)))
-      (unless props
-        (error 'make-tween "props: required, an alist of (keyword . target)"))
-      (check-time 'make-tween "duration" duration)
-      (check-time 'make-tween "delay" delay)
-      (unless (and (exact-integer? repeat) (>= repeat -1))
-        (error 'make-tween
-               (sprintf "repeat: expected an exact integer >= 0, or -1 for forever, got ~s"
-                        repeat)))
-      (when (and (= repeat -1) (zero? duration))
-        (error 'make-tween
-               "repeat: -1 (forever) needs a duration > 0, got duration 0"))
-      (unless (boolean? yoyo?)
-        (error 'make-tween (sprintf "yoyo?: expected #t or #f, got ~s" yoyo?)))
-      (unless (or (not on-complete) (procedure? on-complete))
-        (error 'make-tween
-               (sprintf "on-complete: expected a procedure or #f, got ~s" on-complete)))
+      (check-options 'make-tween props duration delay repeat yoyo? on-complete)
       (let ((ease-proc (ease-procedure ease))
             (props (check-props e props)))
         (%make-tween props duration delay ease-proc on-complete repeat yoyo?
-                     delay 0 0 #f))))
+                     delay 0 0 #f #f))))
+
+  ;; make-tween without the entity: the starts are read from the entity
+  ;; the tween is stepped on, when its first run begins (after the delay),
+  ;; so a tween later in a sequence goes on from where the earlier ones
+  ;; left the entity.
+  (define/keywords (tween-to props #!key (duration 500) (delay 0) (ease 'linear)
+                      (on-complete #f) (repeat 0) (yoyo? #f))
+    (check-options 'tween-to props duration delay repeat yoyo? on-complete)
+    (check-targets 'tween-to props)
+    (%make-tween (map (lambda (p) (cons (car p) (cons #f (cdr p)))) props)
+                 duration delay (ease-procedure ease) on-complete repeat yoyo?
+                 delay 0 0 #f #t))
 
   ;; Delay over and not finished.
   (define (tween-active? t)
@@ -277,7 +309,7 @@
   (define (finish t entity last-run)
     (values (%make-tween (tween-props t) (tween-duration t) (tween-delay t)
                          (tween-ease t) (tween-on-complete t) (tween-repeat t)
-                         (tween-yoyo? t) 0 last-run (tween-duration t) #t)
+                         (tween-yoyo? t) 0 last-run (tween-duration t) #t #f)
             (write-run-end t entity last-run)))
 
   ;; How many whole runs `time` covers and the time left into the next:
@@ -319,8 +351,9 @@
       ;; Still waiting: only the clock moves.
       (values (%make-tween (tween-props t) (tween-duration t) (tween-delay t)
                            (tween-ease t) (tween-on-complete t) (tween-repeat t)
-                           (tween-yoyo? t) (- (tween-delay-left t) dt) 0 0 #f)
+                           (tween-yoyo? t) (- (tween-delay-left t) dt) 0 0 #f (tween-lazy? t))
               entity))
+     ((tween-lazy? t) (step (read-starts t entity) entity dt))
      (else
       (let* ((time (elapsed (tween-run-time t) (- dt (tween-delay-left t))))
              (duration (tween-duration t))
@@ -334,13 +367,219 @@
                     (finish t entity last-run)
                     (values (%make-tween (tween-props t) duration (tween-delay t)
                                          (tween-ease t) (tween-on-complete t) repeat
-                                         (tween-yoyo? t) 0 run run-time #f)
-                            (write-at t entity run run-time))))))))))
+                                         (tween-yoyo? t) 0 run run-time #f #f)
+                            ;; a step that ends a run shows that run's end
+                            ;; exactly; the time past it shows from the next step
+                            (if (> n 0)
+                                (write-run-end t entity (- run 1))
+                                (write-at t entity run run-time)))))))))))
+
+  ;; A tween-to tween whose first run begins: its starts are the entity's
+  ;; values now.
+  (define (read-starts t entity)
+    (%make-tween (map (lambda (p) (cons (car p) (cons (start-value 'tween-to entity (car p)) (cddr p))))
+                      (tween-props t))
+                 (tween-duration t) (tween-delay t) (tween-ease t) (tween-on-complete t)
+                 (tween-repeat t) (tween-yoyo? t) (tween-delay-left t) (tween-run t)
+                 (tween-run-time t) #f #f))
 
   ;; a + b of two finite times, exact when the flonum sum would overflow.
   (define (elapsed a b)
     (let ((s (+ a b)))
       (if (finite-real? s) s (+ (inexact->exact a) (inexact->exact b)))))
+
+  ;; ------------------------------------------------------------------
+  ;; Sequences, parallel groups, waits and calls: what #:tween may hold
+  ;; besides a tween (docs/tweens.org, "Sequences and groups").
+  ;;
+  ;; Each is stepped by track-step over a subject (an entity, or a scene
+  ;; for (downstroke timer)'s scene timers), which the callbacks get and
+  ;; return. A part that ends within a step hands the time it did not need
+  ;; to what follows, in the same step, except a tween that wrote its end
+  ;; values: these stay for the step (the end of every part is shown) and
+  ;; the time left over is banked and given with the next step's dt. The
+  ;; clock therefore loses no time, and a sequence's total is the sum of
+  ;; its parts.
+
+  ;; kind: sequence or parallel; items: the parts as made (a new run starts
+  ;; from them); pending: the parts still to play (sequence: the current
+  ;; one first); banked: time left over by a part that held its end;
+  ;; runs-left: runs after this one, -1 for ever, #f once finished.
+  (define-record-type tween-group
+    (%make-group kind items pending banked runs-left on-complete name)
+    tween-group?
+    (kind group-kind)
+    (items group-items)
+    (pending group-pending)
+    (banked group-banked)
+    (runs-left group-runs-left)
+    (on-complete group-on-complete)
+    (name group-name))
+
+  (set-record-printer! tween-group
+    (lambda (g port)
+      (fprintf port "#<tween-~a~a of ~a, ~a left>" (group-kind g)
+               (if (group-name g) (sprintf " ~s" (group-name g)) "")
+               (length (group-items g)) (length (group-pending g)))))
+
+  (define-record-type tween-call
+    (%make-tween-call proc)
+    tween-call?
+    (proc tween-call-proc))
+
+  ;; What #:tween holds: a tween, a sequence or parallel group, or a call.
+  (define (tween-track? x) (or (tween? x) (tween-group? x) (tween-call? x)))
+
+  ;; The name given to a sequence or group (name:), or #f.
+  (define (tween-track-name x) (and (tween-group? x) (group-name x)))
+
+  (define (tween-call proc)
+    (unless (procedure? proc)
+      (error 'tween-call (sprintf "expected a procedure (lambda (entity) ...) -> entity, got ~s" proc)))
+    (%make-tween-call proc))
+
+  ;; A part that only takes time.
+  (define (tween-wait ms)
+    (check-time 'tween-wait "ms" ms)
+    (tween-to '() duration: ms))
+
+  ;; (tween-sequence part ... [repeat: n] [on-complete: proc] [name: x]):
+  ;; the parts one after the other; (tween-parallel part ...) all at once,
+  ;; finished when the last one is.
+  (define (tween-sequence . args) (make-group 'tween-sequence 'sequence args))
+  (define (tween-parallel . args) (make-group 'tween-parallel 'parallel args))
+
+  (define (make-group who kind args)
+    (let split ((as args) (items '()))
+      (cond ((or (null? as) (keyword? (car as)))
+             (check-keywords who as '(#:repeat #:on-complete #:name))
+             (let ((repeat (option as #:repeat 0))
+                   (on-complete (option as #:on-complete #f))
+                   (items (reverse items)))
+               (unless (and (exact-integer? repeat) (>= repeat -1))
+                 (error who (sprintf "repeat: expected an exact integer >= 0, or -1 for forever, got ~s"
+                                     repeat)))
+               (when (and (= repeat -1) (null? items))
+                 (error who "repeat: -1 (forever) needs at least one part"))
+               (unless (or (not on-complete) (procedure? on-complete))
+                 (error who (sprintf "on-complete: expected a procedure or #f, got ~s" on-complete)))
+               (%make-group kind items items 0 repeat on-complete (option as #:name #f))))
+            ((tween-track? (car as)) (split (cdr as) (cons (car as) items)))
+            (else
+             (error who (sprintf "part ~a: expected a tween, tween-to, tween-wait, tween-call, sequence or parallel group, got ~s"
+                                 (+ 1 (length items)) (car as)))))))
+
+  (define (option kvs key default)
+    (cond ((null? kvs) default)
+          ((eq? (car kvs) key) (cadr kvs))
+          (else (option (cddr kvs) key default))))
+
+  (define (regroup g pending banked runs)
+    (%make-group (group-kind g) (group-items g) pending banked runs
+                 (group-on-complete g) (group-name g)))
+
+  ;; (values track2 subject2 left held?): left is #f while the track goes
+  ;; on, else the part of dt it did not need; held?: it ended by writing
+  ;; end values. accept: (what value) -> value, checks what a callback
+  ;; returned (what: the callback, for the error).
+  (define (track-step x subject dt accept)
+    (cond ((tween? x) (tween-track-step x subject dt accept))
+          ((tween-call? x) (values x (accept "a tween-call" ((tween-call-proc x) subject)) dt #f))
+          ((not (group-runs-left x)) (values x subject dt #f))
+          ((eq? (group-kind x) 'sequence) (sequence-step x subject dt accept))
+          (else (parallel-step x subject dt accept))))
+
+  ;; The time a tween needs to finish, #f when it never does.
+  (define (time-to-finish t)
+    (and (>= (tween-repeat t) 0)
+         (+ (tween-delay-left t)
+            (* (- (tween-repeat t) (tween-run t)) (tween-duration t))
+            (- (tween-duration t) (tween-run-time t)))))
+
+  (define (tween-track-step t subject dt accept)
+    (cond ((tween-finished? t) (values t subject dt #f))
+          ((and (pair? (tween-props t)) (not (pair? subject)))
+           (error 'tween-step
+                  (sprintf "a tween of ~s needs an entity; a scene's timers can only wait and call"
+                           (map car (tween-props t)))))
+          (else
+           (let ((need (time-to-finish t)))
+             (let-values (((t2 s2) (step t subject dt)))
+               (if (not (tween-finished? t2))
+                   (values t2 s2 #f #f)
+                   (let ((done (tween-on-complete t2)))
+                     (values t2 (if done (accept "a tween's on-complete" (done s2)) s2)
+                             (max 0 (- dt need)) (pair? (tween-props t2))))))))))
+
+  (define (finish-group g s left held? accept)
+    (let ((done (group-on-complete g)))
+      (values (regroup g '() 0 #f)
+              (if done (accept "a group's on-complete" (done s)) s)
+              left held?)))
+
+  (define (next-run runs) (if (> runs 0) (- runs 1) runs))
+
+  (define (no-time-error g)
+    (error 'step-tweens
+           (sprintf "a tween-~a repeating forever took no time in a run (give it a wait or a duration)"
+                    (group-kind g))))
+
+  (define (sequence-step g subject dt accept)
+    (let loop ((pending (group-pending g)) (s subject) (time (+ dt (group-banked g)))
+               (runs (group-runs-left g)) (restarted-at #f) (held? #f))
+      (cond ((pair? pending)
+             (let-values (((x s left hold?) (track-step (car pending) s time accept)))
+               (cond ((not left) (values (regroup g (cons x (cdr pending)) 0 runs) s #f #f))
+                     ((and hold? (or (pair? (cdr pending)) (not (eqv? runs 0))))
+                      ;; its end stays for this step; what follows starts next step
+                      (values (regroup g (cdr pending) left runs) s #f #f))
+                     (else (loop (cdr pending) s left runs restarted-at hold?)))))
+            ((eqv? runs 0) (finish-group g s time held? accept))
+            ((and restarted-at (= restarted-at time) (eqv? runs -1)) (no-time-error g))
+            (else (loop (group-items g) s time (next-run runs) time #f)))))
+
+  (define (parallel-step g subject dt accept)
+    (let pass ((parts (group-pending g)) (s subject) (time (+ dt (group-banked g)))
+               (runs (group-runs-left g)) (restarted-at #f))
+      (let loop ((ps parts) (s s) (going '()) (least time) (held? #f))
+        (if (pair? ps)
+            (let-values (((x s left hold?) (track-step (car ps) s time accept)))
+              (if left
+                  (loop (cdr ps) s going (min least left) (or held? hold?))
+                  (loop (cdr ps) s (cons x going) least held?)))
+            (cond ((pair? going) (values (regroup g (reverse going) 0 runs) s #f #f))
+                  ((eqv? runs 0) (finish-group g s least held? accept))
+                  (held? (values (regroup g '() least runs) s #f #f))
+                  ((and restarted-at (= restarted-at least) (eqv? runs -1)) (no-time-error g))
+                  (else (pass (group-items g) s least (next-run runs) least)))))))
+
+  ;; The check of what an entity's callbacks return.
+  (define (entity-result entity)
+    (lambda (what result)
+      (unless (entity? result)
+        (error 'step-tweens
+               (sprintf "entity ~a: ~a returned ~s, not an entity alist"
+                        (entity-label entity) what result)))
+      result))
+
+  ;; One more tween on the entity, with those it has: (tween-parallel old
+  ;; new) when it already has one.
+  (define (entity-add-tween e track)
+    (unless (tween-track? track)
+      (error 'entity-add-tween (sprintf "expected a tween, sequence, group or call, got ~s" track)))
+    (let* ((e (as-entity e))
+           (old (entity-ref e #:tween #f)))
+      (entity-set e #:tween (if old (tween-parallel old track) track))))
+
+  ;; A sequence, group or call on #:tween. Its callbacks get the entity
+  ;; without #:tween; a #:tween one of them sets plays alongside it.
+  (define (step-track entity t dt)
+    (let-values (((t2 e left held?) (track-step t (entity-remove entity #:tween) dt
+                                                (entity-result entity))))
+      (let ((added (entity-ref e #:tween #f)))
+        (cond (left e)
+              (added (entity-set e #:tween (tween-parallel t2 added)))
+              (else (entity-set e #:tween t2))))))
 
   ;; Pipeline step: advance #:tween. A tween that finishes is removed from
   ;; the entity, then its on-complete (if any) gets the entity and returns
@@ -349,21 +588,24 @@
     guard: (entity-ref entity #:tween #f)
     (let ((t (entity-ref entity #:tween)))
       (unless (tween? t)
-        (error 'step-tweens
-               (sprintf "entity ~a: #:tween is ~s, not a tween (make one with make-tween)"
-                        (entity-label entity) t)))
-      (if (tween-finished? t)
-          (entity-remove entity #:tween)
-          (let-values (((t2 e2) (tween-step t entity dt)))
-            (if (not (tween-finished? t2))
-                (entity-set e2 #:tween t2)
-                (let ((done (entity-remove e2 #:tween))
-                      (on-complete (tween-on-complete t2)))
-                  (if (not on-complete)
-                      done
-                      (let ((result (on-complete done)))
-                        (unless (entity? result)
-                          (error 'step-tweens
-                                 (sprintf "entity ~a: the tween's on-complete returned ~s, not an entity alist"
-                                          (entity-label done) result)))
-                        result)))))))))
+        (unless (tween-track? t)
+          (error 'step-tweens
+                 (sprintf "entity ~a: #:tween is ~s, not a tween (make one with make-tween, tween-to or tween-sequence)"
+                          (entity-label entity) t))))
+      (cond
+       ((not (tween? t)) (step-track entity t dt))
+       ((tween-finished? t) (entity-remove entity #:tween))
+       (else
+        (let-values (((t2 e2) (tween-step t entity dt)))
+          (if (not (tween-finished? t2))
+              (entity-set e2 #:tween t2)
+              (let ((done (entity-remove e2 #:tween))
+                    (on-complete (tween-on-complete t2)))
+                (if (not on-complete)
+                    done
+                    (let ((result (on-complete done)))
+                      (unless (entity? result)
+                        (error 'step-tweens
+                               (sprintf "entity ~a: the tween's on-complete returned ~s, not an entity alist"
+                                        (entity-label done) result)))
+                      result))))))))))

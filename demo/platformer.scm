@@ -1,7 +1,16 @@
 ;;; Platformer: a Tiled level, gravity, jumps, a moving platform, a lift,
-;;; jump-through ledges and a camera that glides.
-;;;   bin/demo-platformer        arrows or A/D walk, z or j jumps, down drops
-;;;                              through a ledge, escape quits
+;;; jump-through ledges and a camera that glides; a title, a pause and a
+;;; game over (game states, docs/scenes.org).
+;;;   bin/demo-platformer        Enter starts and pauses, arrows or A/D
+;;;                              walk, z or j jumps, down drops through a
+;;;                              ledge, escape quits
+;;; The title is a state pushed over the level, which it freezes and
+;;; draws (the player shows, though no frame has run); Enter pops it.
+;;; Enter in play pushes the pause over the frozen level. A fall into a
+;;; spike pit costs one of 3 lives; the last one fades out to the game
+;;; over screen, from which Enter fades back to a fresh level and title.
+;;; The player's sprite is its animations (idle, walk, in the air); the
+;;; walk's frames 0 and 1 are footsteps (#:events), each kicking up dust.
 ;;; The wooden ledges are one-way tiles: tiles.tsx gives their tile the bool
 ;;; property one-way, so the player jumps up through them and lands on top.
 ;;; The towers behind are a background layer drawn at 35% opacity (the
@@ -16,12 +25,14 @@
 (import (chicken condition) (chicken file) (downstroke srfi-197)
         (downstroke entity) (downstroke scene) (downstroke tilemap)
         (downstroke physics) (downstroke input) (downstroke sound) (downstroke tween)
-        (downstroke overlap) (downstroke particles) (downstroke text))
+        (downstroke overlap) (downstroke particles) (downstroke text) (downstroke animation)
+        (only (downstroke sdl2) render-draw-blend-mode-set! render-draw-color-set! render-fill-rect! make-rect))
 
 (define walk-speed 2)                   ; px per frame
 (define font-file "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf")
 (define start-x 32)
 (define start-y 192)
+(define lives-at-start 3)
 
 ;; Sprite frames: gids of sprites.tsx, the level's second tileset (first gid 9).
 (define idle 9) (define walk-a 10) (define walk-b 11) (define in-air 12)
@@ -50,7 +61,22 @@
 (define player
   (list #:type 'player #:tags '(player camera-target)
         #:x start-x #:y start-y #:width 16 #:height 16
-        #:gravity? #t #:solid? #t #:tile-id idle))
+        #:gravity? #t #:solid? #t
+        ;; no #:tile-id: the renderer shows the first animation's first
+        ;; frame until the pipeline writes one (the frozen title shows it)
+        #:animations (list (list (cons #:name 'idle) (cons #:frames (list idle)) (cons #:duration 1))
+                           (list (cons #:name 'walk) (cons #:frames (list walk-a walk-b))
+                                 (cons #:duration 8) (cons #:events '((0 . step) (1 . step))))
+                           (list (cons #:name 'air) (cons #:frames (list in-air)) (cons #:duration 1)))))
+
+;; A footstep's puff of dust at the player's feet.
+(define (dust p)
+  (list #:type 'dust #:x (+ (entity-ref p #:x) 8) #:y (+ (entity-ref p #:y) 15) #:width 0 #:height 0
+        #:emitter (emitter-burst (make-emitter speed: '(1/4 3/4) angle: '(190 350) gravity: 0
+                                               lifetime: '(8 14) size: '(2 2)
+                                               color: '(200 190 170) end-color: '(200 190 170 0)
+                                               seed: (entity-ref p #:x 1))
+                                 4)))
 
 ;; Solid and immovable: whoever lands on it rides along (see docs/physics.org).
 ;; It is drawn as the ledge tile of the map's first tileset, "tiles" (gid
@@ -61,8 +87,10 @@
         #:tileset "tiles" #:tile-id 4 #:scale-x 3 #:origin-x 0 #:origin-y 0
         #:color '(196 146 84)))
 
-;; A lift over the second pit: a tween moves it up and down for ever (its
-;; velocity steps are skipped), and it carries its rider by what it did.
+;; A lift over the second pit: a tween sequence moves it up, waits half a
+;; second at the top, down, and waits at the bottom, for ever (its
+;; velocity steps are skipped); it carries its rider by what it did. Each
+;; end is reached exactly (y 120, y 200), whatever the frame length.
 ;; It is the stone tile (gid 8) squeezed to 32 x 8.
 (define lift
   (let ((e (plist->entity
@@ -70,8 +98,11 @@
                   #:solid? #t #:immovable? #t #:color '(150 150 170)
                   #:tileset "tiles" #:tile-id 8 #:scale-x 2 #:scale-y 1/2 #:origin-x 0 #:origin-y 0
                   #:skip-pipelines '(velocity-x velocity-y)))))
-    (entity-set e #:tween (make-tween e props: '((#:y . 120)) duration: 2000
-                                      ease: 'quad-in-out repeat: -1 yoyo?: #t))))
+    (entity-set e #:tween (tween-sequence (tween-to '((#:y . 120)) duration: 2000 ease: 'quad-in-out)
+                                          (tween-wait 500)
+                                          (tween-to '((#:y . 200)) duration: 2000 ease: 'quad-in-out)
+                                          (tween-wait 500)
+                                          repeat: -1))))
 
 ;; The camera glides after the player and lets it move inside a box
 ;; before it follows (docs/scenes.org).
@@ -99,7 +130,7 @@
             (length taken))))
 
 ;; Input becomes velocity; a jump is a one-frame impulse, only from the ground.
-(define (control-player input p frame)
+(define (control-player input p)
   (let* ((dir (cond ((input-held? input 'left) -1)
                     ((input-held? input 'right) 1)
                     (else 0)))
@@ -111,17 +142,20 @@
            (entity-set _ #:drop-through? (input-held? input 'down))
            (entity-set _ #:vx (* dir walk-speed))
            (entity-set _ #:facing (if (zero? dir) (entity-ref p #:facing 1) dir))
-           (entity-set _ #:tile-id (cond ((not ground?) in-air)
-                                         ((zero? dir) idle)
-                                         ((even? (quotient frame 8)) walk-a)
-                                         (else walk-b))))))
+           (set-animation _ (cond ((not ground?) 'air) ((zero? dir) 'idle) (else 'walk))))))
 
-;; Below the floor means in a spike pit: back to the start.
-(define (respawn-if-fallen p)
-  (if (> (entity-ref p #:y) 200)
-      (chain p (entity-set _ #:x start-x) (entity-set _ #:y start-y)
-             (entity-set _ #:vy 0))
-      p))
+;; The dust of the footsteps the walk animation marked this frame.
+(define (kick-up-dust scene)
+  (let ((p (scene-find-tagged scene 'player)))
+    (if (and p (eq? (entity-ref p #:anim-event #f) 'step))
+        (scene-add-entity scene (dust p))
+        scene)))
+
+;; Below the floor means in a spike pit.
+(define (fallen? p) (> (entity-ref p #:y) 200))
+
+(define (respawn p)
+  (chain p (entity-set _ #:x start-x) (entity-set _ #:y start-y) (entity-set _ #:vy 0)))
 
 ;; The platform turns around at the ends of its track.
 (define (move-platform p)
@@ -129,6 +163,70 @@
     (cond ((<= x (entity-ref p #:min-x)) (entity-set p #:vx 1))
           ((>= x (entity-ref p #:max-x)) (entity-set p #:vx -1))
           (else p))))
+
+;; The level, fresh: the map, its coins spinning, 3 lives, no coin taken.
+(define (load-level! game)
+  (game-asset-set! game 'coins 0)
+  (game-asset-set! game 'lives lives-at-start)
+  (let* ((scene (game-load-scene! game "demo/levels/platformer.tmx"
+                                  entities: (list platform lift player)
+                                  objects->entities: '("coins")
+                                  camera: camera))
+         (sprites (cadr (tilemap-tilesets (scene-tilemap scene)))))
+    ;; entities draw their #:tile-id from the sprite sheet
+    (game-scene-set! game (scene-map-entities
+                           (update-scene scene tileset: sprites tileset-texture: #f)
+                           (lambda (s e) (if (eq? (entity-type e) 'coin) (spinning e) e))))))
+
+(define (start-pressed? game) (input-pressed? (game-input game) 'start))
+
+;; One frame of play: the player and the platform move, coins are taken,
+;; footsteps raise dust; Enter pauses; a fall costs a life, the last one
+;; the game (a fade to the game over screen).
+(define (play! game dt)
+  (receive (scene taken)
+      (collect-coins
+       (kick-up-dust
+        (scene-map-entities
+         (game-scene game)
+         (lambda (scene e)
+           (case (entity-type e)
+             ((player) (control-player (game-input game) e))
+             ((platform) (move-platform e))
+             (else e))))))
+    (game-asset-set! game 'coins (+ taken (game-asset game 'coins)))
+    (let ((p (scene-find-tagged scene 'player)))
+      (cond ((not (fallen? p)) (game-scene-set! game scene))
+            ((> (game-asset game 'lives) 1)
+             (game-asset-set! game 'lives (- (game-asset game 'lives) 1))
+             (game-scene-set! game (scene-map-entities scene (lambda (s e) (if (eq? e p) (respawn e) e)))))
+            (else
+             (game-asset-set! game 'lives 0)
+             (game-scene-set! game scene)
+             (game-state-set! game 'game-over transition: (make-fade out: 500 in: 500)))))
+    (when (start-pressed? game) (game-state-push! game 'pause))))
+
+;; Text centred on the view at height y, when the font loaded.
+(define (centred-text! game text y color)
+  (let ((font (game-asset game 'font)))
+    (when font
+      (receive (w h) (text-size font text)
+        (draw-text! (game-renderer game) font text (quotient (- (game-width game) w) 2) y color: color)))))
+
+;; The frozen level dimmed under a state's text.
+(define (dim! game alpha)
+  (let ((r (game-renderer game)))
+    (render-draw-blend-mode-set! r 'blend)
+    (render-draw-color-set! r 0 0 20 alpha)
+    (render-fill-rect! r (make-rect 0 0 (game-width game) (game-height game)))
+    (render-draw-blend-mode-set! r 'none)))
+
+(define (hud! game)
+  (let ((font (game-asset game 'font)))
+    (when font
+      (draw-text! (game-renderer game) font
+                  (sprintf "COINS ~a  LIVES ~a" (game-asset game 'coins) (game-asset game 'lives)) 6 4
+                  color: '(255 240 120)))))
 
 (define game
   (make-game
@@ -138,52 +236,69 @@
                  (begin (init-audio!)
                         (load-sounds! '((jump . "demo/assets/jump.wav") (coin . "demo/assets/coin.wav"))))
                (e (exn) (print "platformer: no sound (" (get-condition-property e 'exn 'message) ")")))
-             (game-asset-set! game 'coins 0)
              (game-asset-set! game 'font (and (file-exists? font-file) (open-font font-file 12)))
-             (let* ((scene (game-load-scene! game "demo/levels/platformer.tmx"
-                                             entities: (list platform lift player)
-                                             objects->entities: '("coins")
-                                             camera: camera))
-                    (sprites (cadr (tilemap-tilesets (scene-tilemap scene)))))
-               ;; entities draw their #:tile-id from the sprite sheet
-               (game-scene-set! game (scene-map-entities
-                                      (update-scene scene tileset: sprites tileset-texture: #f)
-                                      (lambda (s e) (if (eq? (entity-type e) 'coin) (spinning e) e))))))
-   update: (lambda (game dt)
-             (receive (scene taken)
-                 (collect-coins
-                  (scene-map-entities
-                   (game-scene game)
-                   (lambda (scene e)
-                     (case (entity-type e)
-                       ((player) (respawn-if-fallen
-                                  (control-player (game-input game) e (game-frame game))))
-                       ((platform) (move-platform e))
-                       (else e)))))
-               (game-asset-set! game 'coins (+ taken (game-asset game 'coins)))
-               (game-scene-set! game scene)))
-   render: (lambda (game)
-             (let ((font (game-asset game 'font)))
-               (when font
-                 (draw-text! (game-renderer game) font
-                             (sprintf "COINS ~a" (game-asset game 'coins)) 6 4
-                             color: '(255 240 120)))))))
+             (game-asset-set! game 'big-font (and (file-exists? font-file) (open-font font-file 24)))
+             (load-level! game)
+             (game-state-push! game 'title))
+   update: play!
+   render: hud!))
+
+;; The title: over the frozen level, until Enter.
+(game-add-state! game 'title
+  update: (lambda (game dt) (when (start-pressed? game) (game-state-pop! game)))
+  render: (lambda (game)
+            (dim! game 120)
+            (let ((font (game-asset game 'big-font)))
+              (when font
+                (receive (w h) (text-size font "DOWNSTROKE")
+                  (draw-text! (game-renderer game) font "DOWNSTROKE" (quotient (- (game-width game) w) 2) 70
+                              color: '(255 240 120)))))
+            (centred-text! game "a platformer" 104 '(230 230 255))
+            (centred-text! game "press Enter to play" 150 '(255 255 255))))
+
+;; The pause: pushed over play, which it freezes; the HUD still shows.
+(game-add-state! game 'pause
+  update: (lambda (game dt) (when (start-pressed? game) (game-state-pop! game)))
+  render: (lambda (game)
+            (dim! game 140)
+            (centred-text! game "PAUSED" 100 '(255 255 255))
+            (centred-text! game "Enter to go on" 124 '(200 200 220))))
+
+;; Game over: a scene of its own; Enter fades back to a fresh level, its
+;; title over it (made under the fade's full cover).
+(game-add-state! game 'game-over
+  enter: (lambda (game) (game-scene-set! game (make-sprite-scene background: '(30 10 30) camera-target: #f)))
+  update: (lambda (game dt)
+            (when (start-pressed? game)
+              (game-transition! game
+                                (lambda (game)
+                                  (load-level! game)
+                                  (game-state-set! game #f)
+                                  (game-state-push! game 'title))
+                                transition: (make-fade out: 400 in: 400))))
+  render: (lambda (game)
+            (centred-text! game "GAME OVER" 90 '(255 90 90))
+            (centred-text! game (sprintf "coins ~a" (game-asset game 'coins)) 116 '(255 240 120))
+            (centred-text! game "press Enter" 150 '(255 255 255))))
 
 (demo-run! game)
 (shutdown-audio!)
 
-;; A headless run reports where the player ended (the tests read this line).
+;; A headless run reports the state and where the player ended (the tests
+;; read these lines).
 (when (demo-headless?)
+  (printf "platformer: state ~a lives ~a~%" (game-state-stack game) (game-asset game 'lives))
   (let ((p (scene-find-tagged (game-scene game) 'player))
-        (lift (car (filter-entities (lambda (e) (eq? (entity-type e) 'lift))
-                                    (scene-entities (game-scene game)))))
+        (lift (filter-entities (lambda (e) (eq? (entity-type e) 'lift))
+                               (scene-entities (game-scene game))))
         (camera (scene-camera (game-scene game))))
-    (printf "platformer: coins ~a left ~a sparkles ~a~%" (game-asset game 'coins)
-            (length (scene-find-all-tagged (game-scene game) 'coin))
-            (foldl (lambda (n e) (if (eq? (entity-type e) 'sparkles)
-                                     (+ n (emitter-count (entity-ref e #:emitter)))
-                                     n))
-                   0 (scene-entities (game-scene game))))
-    (printf "platformer: player at (~a, ~a) on-ground ~a camera (~a, ~a) lift at ~a~%"
-            (entity-ref p #:x) (entity-ref p #:y) (entity-ref p #:on-ground? #f)
-            (camera-x camera) (camera-y camera) (floor (entity-ref lift #:y)))))
+    (when (and p (pair? lift))
+      (printf "platformer: coins ~a left ~a sparkles ~a~%" (game-asset game 'coins)
+              (length (scene-find-all-tagged (game-scene game) 'coin))
+              (foldl (lambda (n e) (if (eq? (entity-type e) 'sparkles)
+                                       (+ n (emitter-count (entity-ref e #:emitter)))
+                                       n))
+                     0 (scene-entities (game-scene game))))
+      (printf "platformer: player at (~a, ~a) on-ground ~a camera (~a, ~a) lift at ~a~%"
+              (entity-ref p #:x) (entity-ref p #:y) (entity-ref p #:on-ground? #f)
+              (camera-x camera) (camera-y camera) (floor (entity-ref (car lift) #:y))))))

@@ -27,6 +27,8 @@
    game-run! game-recording game-surface game-load-scene! game-load-tilesets! game-textures
    load-tilemap-textures!
    game-add-state! game-state-set! game-current-state game-states
+   game-state-push! game-state-pop! game-state-stack game-transition!
+   make-transition transition? make-fade game-transitioning? game-scene-time
    game-frame-profile game-paused? game-resume! game-quit!)
 
   (import (downstroke keywords))
@@ -34,7 +36,8 @@
           (chicken foreign) (chicken condition) (chicken file) (chicken pathname) (chicken port)
           (downstroke game) (downstroke level) (downstroke pipeline)
           (downstroke scene) (downstroke sdl2) (downstroke renderer) (downstroke input)
-          (downstroke repl) (downstroke camera) (downstroke save))
+          (downstroke repl) (downstroke camera) (downstroke save)
+          (only (downstroke timer) step-scene-timers))
 
   ;;; ------------------------------------------------------------------
   ;;; Input, window and pointer settings a game changes while it runs.
@@ -120,7 +123,9 @@
 
   ;; The scene's engine-update field: #f runs the default pipeline, a
   ;; procedure runs instead of it as (proc game dt), 'none runs nothing.
+  ;; The scene's timers run first, whichever it is.
   (define (run-engine-update! game dt)
+    (run-scene-timers! game dt)
     (let ((scene (game-scene game)))
       (when scene
         (let ((eu (scene-engine-update scene)))
@@ -130,6 +135,11 @@
                 (else (error 'run-engine-update!
                              "scene engine-update must be #f, a procedure or 'none" eu)))))))
 
+  (define (run-scene-timers! game dt)
+    (let ((scene (game-scene game)))
+      (when (and scene (pair? (scene-timers scene)))
+        (game-scene-set! game (step-scene-timers scene dt)))))
+
   ;; What a game does once before its first frame.
   (define (game-start! game)
     (let ((preload (game-preload-hook game))
@@ -137,21 +147,49 @@
       (when preload (preload game))
       (when create (create game))))
 
-  ;; One logical frame without devices: engine update, update:, camera
-  ;; follow. dt defaults to the game's frame delay (ms).
+  ;; One logical frame without devices: engine update, update:, the
+  ;; state changes asked for, camera follow. dt defaults to the game's
+  ;; frame delay (ms). While a state is pushed over the scene (or a
+  ;; transition's first half plays) the scene is frozen: no engine update,
+  ;; no camera follow (game.scm, "Named game states").
   (define (game-step! game #!optional (dt (game-frame-delay game)))
-    (let* ((t0 (now-ms))
-           (t1 (begin (run-engine-update! game dt) (now-ms))))
-      (let ((update (active-update-hook game)))
-        (when update (update game dt)))
-      (profile-set! game 0 (- t1 t0))
-      (profile-set! game 1 (- (now-ms) t1))
-      (profile-set! game 2 0))                 ; until the frame is drawn
-    (let ((scene (game-scene game)))
-      (when scene
-        (game-scene-set! game (scene-follow-camera scene (game-width game)
-                                                   (game-height game)))))
+    (let ((runs? (begin-frame! game))
+          (done? #f))
+      (dynamic-wind
+       void
+       (lambda ()
+         (let* ((t0 (now-ms))
+                (t1 (begin (when runs? (run-engine-update! game dt)) (now-ms))))
+           (run-update-hooks! game dt)
+           (profile-set! game 0 (- t1 t0))
+           (profile-set! game 1 (- (now-ms) t1))
+           (profile-set! game 2 0))            ; until the frame is drawn
+         (set! done? #t))
+       ;; an error in a hook leaves no frame open (the REPL goes on)
+       (lambda () (unless done? (abandon-frame! game))))
+      (end-frame! game dt runs?)
+      (let ((scene (game-scene game)))
+        (when (and scene runs?)
+          (game-scene-set! game (scene-follow-camera scene (game-width game)
+                                                     (game-height game))))))
     (game-frame-set! game (+ (game-frame game) 1)))
+
+  ;; A transition that fades the frame to `color` (r g b) over out: ms,
+  ;; then back from it over in: ms.
+  (define/keywords (make-fade #!key (out 250) (in 250) (color '(0 0 0)))
+    (unless (and (list? color) (= (length color) 3)
+                 (let ok ((c color)) (or (null? c) (and (exact-integer? (car c)) (<= 0 (car c) 255) (ok (cdr c))))))
+      (error 'make-fade (sprintf "color: expected (r g b), each 0-255, got ~s" color)))
+    (make-transition out: out in: in draw: (lambda (game amount) (fade-cover! game color amount))))
+
+  (define (fade-cover! game color amount)
+    (let ((r (game-renderer game))
+          (a (inexact->exact (round (* 255 amount)))))
+      (when (and r (> a 0))
+        (render-draw-blend-mode-set! r (if (< a 255) 'blend 'none))
+        (render-draw-color-set! r (car color) (cadr color) (caddr color) a)
+        (render-fill-rect! r (make-rect 0 0 (game-width game) (game-height game)))
+        (render-draw-blend-mode-set! r 'none))))
 
   ;;; The frame profile: how long the last frames' engine update, update:
   ;;; and drawing took (ms, from a monotonic clock), for the overlay and
@@ -288,9 +326,12 @@
   ;;; when none is due the loop sleeps until the next one. One logical
   ;;; frame: the events polled with input-poll-events! (only the first frame of a catch-up batch
   ;;; sees them) -> the input state (game-input), or the script's state ->
-  ;;; the scene's engine update -> update: (game dt) -> camera follow; then,
-  ;;; once per loop that ran a frame: render-scene! (or a black clear when
-  ;;; there is no scene), render: (game), the overlay's readout when the
+  ;;; the scene's timers and engine update -> update: (game dt) -> the
+  ;;; state changes asked for -> camera follow (game-step!: no engine
+  ;;; update nor camera follow while a pushed state freezes the scene);
+  ;;; then, once per loop that ran a frame: render-scene! (or a black clear
+  ;;; when there is no scene, or the states drawn hide it), the render:
+  ;;; hooks, a transition's cover, the overlay's readout when the
   ;;; game is in debug mode, the letterbox bars (when the window's shape is
   ;;; not the game's), present. dt is always frame-delay. Each frame reads
   ;;; the game's input configuration anew (game-input-config-set!), and a
@@ -435,15 +476,16 @@
   (define (render-frame! game renderer #!optional (shot-box #f))
     (let ((scene (game-scene game))
           (t0 (now-ms)))
-      (if scene
+      (if (and scene (scene-drawn? game))
           (render-scene! renderer scene textures: (game-textures game)
                          debug?: (game-debug? game)
-                         ;; game time: animated map tiles follow the frames run
-                         time: (* (game-frame game) (game-frame-delay game)))
+                         ;; game time: animated map tiles follow the frames
+                         ;; the scene ran (they stop while it is frozen)
+                         time: (game-scene-time game))
           (begin (render-draw-color-set! renderer 0 0 0)
                  (render-clear! renderer)))
-      (let ((hook (active-render-hook game)))
-        (when hook (hook game)))
+      (run-render-hooks! game)
+      (draw-transition! game)
       ;; the frame just drawn is game-frame - 1
       (vector-set! (game-profile game)
                    (+ (* 3 (modulo (- (game-frame game) 1) (quotient (vector-length (game-profile game)) 3))) 2)

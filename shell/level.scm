@@ -124,7 +124,8 @@
              (_ (check-map-orientation 'game-load-scene! tm))
              (convert (if (eq? objects->entities unset-key) (and prefabs #t) objects->entities))
              (convert? (object-layer-selector 'game-load-scene! convert))
-             (map-entities (tilemap-objects->entities tm prefabs: prefabs layers: convert?))
+             (map-entities (tilemap-objects->entities tm prefabs: prefabs layers: convert?
+                                                         frame-delay: (game-frame-delay game)))
              (textures (load-textures! r (tilemap-images tm)))
              (first-ts (and (pair? (tilemap-tilesets tm)) (car (tilemap-tilesets tm))))
              (first-img (and first-ts (tileset-image first-ts)))

@@ -18,6 +18,9 @@
 ;;;      (r g b [a]), a filled #:width x #:height rectangle of that colour
 ;;;      (alpha below 255 blends); else nothing. An entity whose #:tile-id
 ;;;      cannot be drawn (no tileset or texture) falls through to #:color.
+;;;      An entity with #:animations and no #:tile-id yet (the pipeline
+;;;      has not run) is drawn with its current frame's tile
+;;;      (animation.scm's animation-tile).
 ;;;      #:tile-id numbers tiles as gids of the scene's tileset: local tile
 ;;;      id + the tileset's first gid (1 for a map's first tileset), the same
 ;;;      numbers the map's cells use.
@@ -121,6 +124,7 @@
           (downstroke sdl2) (downstroke entity) (downstroke scene)
           (downstroke map) (downstroke mapdraw)
           (only (downstroke physics) entity-cell-span tunnel-risk?)
+          (only (downstroke animation) animation-tile)
           (only (downstroke particles) emitter? emitter-for-each emitter-tile-id emitter-size
                 emitter-color emitter-end-color))
 
@@ -175,6 +179,7 @@
   (foreign-declare "#include \"shell/keys.c\"")
   (define-drawn-keys entity-keys
     (bit-tile-id #:tile-id) (bit-color #:color) (bit-x #:x) (bit-y #:y) (bit-facing #:facing)
+    (bit-animations #:animations)
     (bit-offset-x #:sprite-offset-x) (bit-offset-y #:sprite-offset-y)
     (bit-origin-x #:origin-x) (bit-origin-y #:origin-y) (bit-flip-x #:flip-x?) (bit-flip-y #:flip-y?)
     (bit-angle #:angle) (bit-scale #:scale) (bit-scale-x #:scale-x) (bit-scale-y #:scale-y)
@@ -220,7 +225,10 @@
                           (entity-ref e #:x 0) (entity-ref e #:y 0) (entity-ref e #:facing 1)
                           e cx cy tileset texture))
             ((fx< mask plain-keys)
-             (draw-plain! r (vector-ref key-values 0) (vector-ref key-values 1)
+             (draw-plain! r (or (vector-ref key-values 0)
+                                ;; animated, not stepped yet: its first frame
+                                (and (vector-ref key-values 5) (animation-tile e)))
+                          (vector-ref key-values 1)
                           (drawn-number e #:x (vector-ref key-values 2))
                           (drawn-number e #:y (vector-ref key-values 3))
                           (vector-ref key-values 4) e cx cy tileset texture))
@@ -264,7 +272,8 @@
         (if (has? bit-tileset)
             (sheet-for e (entity-ref e #:tileset))
             (values tileset texture))
-      (let* ((tile-id (entity-ref e #:tile-id #f))
+      (let* ((tile-id (or (entity-ref e #:tile-id #f)
+                          (and (has? bit-animations) (animation-tile e))))
              (alpha (if (has? bit-alpha) (byte-of (sprite-number e #:alpha 255)) 255)))
         (cond ((and tile-id tileset texture
                     (>= (- tile-id (tileset-first-gid tileset)) 0))

@@ -4,13 +4,17 @@
 ;;; the towers of the background layer are drawn at 35% opacity over the
 ;;; sky; the moving platform and the lift are drawn from the tiles sheet.
 ;;; The window scale is 2: a world pixel is 2 x 2 screenshot pixels.
+;;; The demo starts on its title, over the frozen level: the scripts press
+;;; start on frame 0, so play begins on frame 1.
+;;; Its states: the title, a pause pushed over the frozen level, a fade to
+;;; the game over screen when the last of 3 lives is lost.
 
 (import scheme (chicken base) (chicken io) (chicken process) (chicken file)
         (chicken string) (chicken format) (downstroke test))
 (include-relative "pixels.scm")
 (include-relative "demo-support.scm")
 
-(define pl-script '((0 right) (40 right a) (41 right) (90)))
+(define pl-script '((0 start) (1 right) (41 right a) (42 right) (91)))
 
 ;; Runs the demo for `frames`; answers its two last lines.
 (define (pl-demo! frames shot)
@@ -25,12 +29,12 @@
   (map string->number
        (string-split (list->string (map (lambda (c) (if (char-numeric? c) c #\space)) (string->list line))))))
 
-(define pl-shot (demo-tmp "pl-150.png"))
-(define pl-puff (demo-tmp "pl-46.png"))
+(define pl-shot (demo-tmp "pl-151.png"))
+(define pl-puff (demo-tmp "pl-47.png"))
 (define pl-sky '(92 148 252))
 
 (test-group "demo: platformer"
-  (let* ((lines (pl-demo! 150 pl-shot))
+  (let* ((lines (pl-demo! 151 pl-shot))
          (numbers (pl-numbers (cadr lines)))
          (cx (list-ref numbers 2)) (cy (list-ref numbers 3)))
     (test "jumping at frame 40 takes one of the 15 coins" "platformer: coins 1 left 14 sparkles 0"
@@ -49,7 +53,7 @@
                  (> (png-count pl-shot (near-colour? '(252 210 60))) 50))
     (test-assert "the moving platform is the plank tile: its dark body shows"
                  (> (png-count pl-shot (near-colour? '(150 104 56))) 40)))
-  (let* ((lines (pl-demo! 46 pl-puff))
+  (let* ((lines (pl-demo! 47 pl-puff))
          (numbers (pl-numbers (cadr lines)))
          (cx (list-ref numbers 2)) (cy (list-ref numbers 3)))
     (test "four frames after the coin is taken its 12 sparkles fly" "platformer: coins 1 left 14 sparkles 12"
@@ -65,3 +69,51 @@
                                                                     (250 200 160)))))))
                                (* 2 (- 96 cx)) (* 2 (- 150 cy)) 96 96)
                     10))))
+
+;; Runs the demo with `script` (a list) for `frames`, a screenshot to
+;; `shot`; answers its lines of state, coins and player ("" when missing).
+(define (pl-run! script frames shot)
+  (when (file-exists? shot) (delete-file shot))
+  (with-output-to-file (demo-tmp "pl-states.scm") (lambda () (write script)))
+  (let ((lines (demo-output (sprintf "bin/demo-platformer --headless --frames ~a --screenshot ~a --script ~a"
+                                     frames shot (demo-tmp "pl-states.scm")))))
+    ;; the game over screen's scene has no player: no coins nor player line
+    (map (lambda (start) (let ((l (filter-lines start lines))) (if (pair? l) (car l) "")))
+         '("platformer: state" "platformer: coins" "platformer: player"))))
+
+;; Walks right, jumping every 30 frames from frame 50 to `until`: the
+;; player takes coins and falls into the spike pit, again and again.
+(define (pl-reckless until . more)
+  (append '((0 start))
+          (let loop ((n 50) (out '()))
+            (if (>= n until) (reverse out) (loop (+ n 30) (cons (list (+ n 1) 'right) (cons (list n 'right 'a) out)))))
+          more))
+
+(test-group "demo: platformer's states"
+  (let* ((shot (demo-tmp "pl-title.png"))
+         (lines (pl-run! '() 1 shot)))
+    (test "it starts on the title, pushed over the game's own hooks" "platformer: state (title #f) lives 3" (car lines))
+    (test "the level under it is frozen: the player has not fallen yet, the lift not moved"
+          '(32 192 0 0 200) (pl-numbers (caddr lines)))
+    ;; the shirt (40 120 230) under the title's dimming (0 0 20, alpha 120)
+    (test-assert "the player is drawn on the frozen title, though no frame ran (its animation's first frame)"
+                 (> (png-count shot (near-colour? '(21 64 131) 3) 64 384 32 32) 20)))
+  (let* ((script '((0 start) (1 right) (30 right start) (31 right)))
+         (at-35 (pl-run! script 35 (demo-tmp "pl-pause-35.png")))
+         (at-45 (pl-run! script 45 (demo-tmp "pl-pause-45.png"))))
+    (test "start in play pushes the pause over the level" "platformer: state (pause #f) lives 3" (car at-45))
+    (test "the level is frozen under it: the player and the lift have not moved in 10 frames"
+          (caddr at-35) (caddr at-45))
+    (test-assert "the pause's text is drawn (white)"
+                 (> (png-count (demo-tmp "pl-pause-45.png") (near-colour? '(255 255 255) 0) 200 180 240 100) 50)))
+  (let ((over (pl-run! (pl-reckless 540) 540 (demo-tmp "pl-over.png"))))
+    (test "three falls into the spikes: the game over screen" "platformer: state (game-over) lives 0" (car over))
+    (test-assert "its own scene is drawn (dark purple)"
+                 (> (png-count (demo-tmp "pl-over.png") (near-colour? '(30 10 30) 0)) 200000)))
+  (let ((mid (pl-run! (pl-reckless 540) 480 (demo-tmp "pl-fading.png"))))
+    (test "on the way there the level fades out, frozen" "platformer: state () lives 0" (car mid))
+    (test "no pixel of the frame is still the bright sky" 0
+          (png-count (demo-tmp "pl-fading.png") (near-colour? pl-sky 10))))
+  (test "start on the game over screen fades back to a fresh level and its title"
+        "platformer: state (title #f) lives 3"
+        (car (pl-run! (pl-reckless 540 '(560 start) '(561)) 620 (demo-tmp "pl-again.png")))))

@@ -36,7 +36,11 @@
 
 (test-group "demo: platformer"
   (when (file-exists? (demo-tmp "ds-platformer.png")) (delete-file (demo-tmp "ds-platformer.png")))
-  (let ((line (last-line (demo-output (string-append "bin/demo-platformer --headless --frames 120 --screenshot " (demo-tmp "ds-platformer.png"))))))
+  ;; start pressed on frame 0 leaves the title; 120 frames of play follow
+  (with-output-to-file (demo-tmp "ds-start.scm") (lambda () (write '((0 start) (1)))))
+  (let ((line (last-line (demo-output (string-append "bin/demo-platformer --headless --frames 121 --script "
+                                                     (demo-tmp "ds-start.scm") " --screenshot "
+                                                     (demo-tmp "ds-platformer.png"))))))
     (test-assert "the player stands on the ground after 120 frames"
                  (substring-index "on-ground #t" line))
     ;; the lift's tween runs 2 s each way: after 120 frames of 16 ms it is
@@ -68,10 +72,12 @@
 ;; ALSA with a device that does not exist stands for a machine without a
 ;; sound card: alsa-lib would print its own complaints on stderr.
 (test-group "demo: quiet without an audio device"
+  (with-output-to-file (demo-tmp "ds-start.scm") (lambda () (write '((0 start) (1)))))
   (let* ((err (demo-tmp "ds-quiet.err"))
          (out (with-input-from-pipe
                (string-append "cd .. && SDL_AUDIODRIVER=alsa AUDIODEV=downstroke-no-such-pcm "
-                              "bin/demo-platformer --headless --frames 5 2>" err)
+                              "bin/demo-platformer --headless --frames 6 --script " (demo-tmp "ds-start.scm")
+                              " 2>" err)
                read-lines))
          (errors (with-input-from-file err read-lines)))
     (test "nothing on stderr" '() errors)

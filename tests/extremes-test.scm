@@ -185,14 +185,18 @@
           (receive (t e) (tween-step t e (car dts)) (loop t e (cdr dts))))))
   (define star (ex-ent #:type 'star #:x 0))
   ;; 16 ms hold 2^1078 runs of 5e-324 (= 2^-1074) ms: 16 / 5e-324 is +inf.0
+  ;; (a step that ends runs shows the last one's end; a step of 0 after it
+  ;; shows where the clock is)
   (test "a run of 5e-324 ms repeating forever, stepped 16 ms twice: 2^1078 whole runs each, x back at its start, still running"
-        '(0 #t) (x-after star '(16 16) props: '((#:x . 10)) duration: 5e-324 repeat: -1))
+        '(0 #t) (x-after star '(16 16 0) props: '((#:x . 10)) duration: 5e-324 repeat: -1))
+  (test "the step that ends those runs shows the end of the last one" '(10 #t)
+        (x-after star '(16 16) props: '((#:x . 10)) duration: 5e-324 repeat: -1))
   (test "with yoyo?, 2^52 + 1 runs of 5e-324 ms (counted exactly) end on a backward run, at the target"
         '(10 #t) (x-after star (list (* (+ (expt 2 52) 1) 5e-324)) props: '((#:x . 10)) duration: 5e-324
                           repeat: -1 yoyo?: #t))
   ;; 2^-1020 ms is 2^54 units of 5e-324: 6004799503160661 runs of 3 units, 1 unit left
   (test "runs counted beyond 2^52 leave the exact remainder: a third of a run" (/ 10. 3)
-        (car (x-after star (list (expt 2. -1020)) props: '((#:x . 10)) duration: (* 3 5e-324) repeat: -1)))
+        (car (x-after star (list (expt 2. -1020) 0) props: '((#:x . 10)) duration: (* 3 5e-324) repeat: -1)))
   (let ((far (ex-ent #:type 'star #:x -1e308)))
     (test "a tween of #:x from -1e308 to 1e308: halfway is 0, not +inf.0" '(0. #t)
           (x-after far '(50) props: '((#:x . 1e308)) duration: 100))

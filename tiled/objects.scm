@@ -17,8 +17,8 @@
   ;;; ------------------------------------------------------------------
   ;;; Map objects as entities.
   ;;;
-  ;;; (map-object->entity tm object #!key prefabs layer) -> an entity alist
-  ;;; (tilemap-objects->entities tm #!key prefabs (layers #t)) -> a list
+  ;;; (map-object->entity tm object #!key prefabs layer frame-delay) -> an entity alist
+  ;;; (tilemap-objects->entities tm #!key prefabs (layers #t) frame-delay) -> a list
   ;;;
   ;;; An object of a Tiled object layer becomes an entity with, in order:
   ;;;   #:type       the object's class (its `type` before Tiled 1.9) as a
@@ -36,6 +36,12 @@
   ;;;   #:tile-id    tile objects: the tile's gid (flags cleared), the number
   ;;;                the renderer draws from the scene's tileset; and
   ;;;                #:facing -1 when the tile is flipped horizontally;
+  ;;;   #:animations tile objects whose tile Tiled animates: that animation,
+  ;;;                named tiled, its frames (gid . ticks), a tick being
+  ;;;                frame-delay: ms (16 unless given; game-load-scene! gives
+  ;;;                the game's); each frame ends on the tick nearest to
+  ;;;                where Tiled ends it (so the rounding never adds up),
+  ;;;                and lasts at least one. A prefab's #:animations win;
   ;;;   #:rotation   degrees clockwise, when not 0 (the box is unrotated);
   ;;;   #:shape      ellipse, capsule, point, polygon, polyline or text (rectangles
   ;;;                and tile objects have none); #:points for polygons and
@@ -89,7 +95,12 @@
     (let ((c (object-class o)))
       (and (not (equal? c "")) (string->symbol c))))
 
-  (define/keywords (map-object->entity tm o #!key (prefabs #f) (layer #f))
+  (define/keywords (map-object->entity tm o #!key (prefabs #f) (layer #f) (frame-delay 16))
+    (unless (and (real? frame-delay) (exact? frame-delay) (> frame-delay 0))
+      (error 'map-object->entity (sprintf "frame-delay: must be an exact number of ms > 0, got ~s" frame-delay)))
+    (with-tiled-animation tm o (object->entity tm o prefabs layer) frame-delay))
+
+  (define (object->entity tm o prefabs layer)
     (when (and prefabs (not (prefabs? prefabs)))
       (error 'map-object->entity "prefabs: must be a prefab collection (load-prefabs) or #f"
              prefabs))
@@ -132,6 +143,28 @@
                                 (else (loop (cdr ps) (cons (car ps) out))))))
             e))))
 
+;; The tile's Tiled animation as the entity's, unless it has animations.
+  (define (with-tiled-animation tm o e frame-delay)
+    (let* ((info (and (eq? (object-shape o) 'tile) (tilemap-tile-info tm (object-gid o))))
+           (frames (and info (tile-animation info))))
+      (if (or (not (pair? frames)) (assq #:animations e))
+          e
+          (let ((first (tileset-first-gid (tilemap-tileset-for tm (object-gid o)))))
+            (append e (list (cons #:animations
+                                  (list (list (cons #:name 'tiled)
+                                              (cons #:frames (tiled-frames frames first frame-delay)))))))))))
+
+  ;; ((local-id . ms) ...) -> ((gid . ticks) ...): frame k ends on the tick
+  ;; nearest to the sum of the ms of frames 0..k.
+  (define (tiled-frames frames first frame-delay)
+    (let loop ((fs frames) (ms 0) (ticks 0) (out '()))
+      (if (null? fs)
+          (reverse out)
+          (let* ((ms (+ ms (cdar fs)))
+                 (n (max 1 (- (round (/ ms frame-delay)) ticks))))
+            (loop (cdr fs) ms (+ ticks n)
+                  (cons (cons (+ first (caar fs)) n) out))))))
+
   ;; A predicate on layers from a layers: value (#t, names, or a predicate).
   (define (object-layer-selector who layers)
     (cond ((eq? layers #t) (lambda (l) #t))
@@ -145,7 +178,7 @@
   (define (every-string? l) (or (null? l) (and (string? (car l)) (every-string? (cdr l)))))
 
   ;; Errors name the map, the layer and the object.
-  (define (object->entity/named tm layer o prefabs)
+  (define (object->entity/named tm layer o prefabs frame-delay)
     (handle-exceptions exn
         (error 'tilemap-objects->entities
                (sprintf "~a: object layer ~s, object ~a~a: ~a"
@@ -153,9 +186,9 @@
                         (layer-name layer) (object-id o)
                         (if (equal? (object-name o) "") "" (sprintf " (~s)" (object-name o)))
                         ((condition-property-accessor 'exn 'message "unknown error") exn)))
-      (map-object->entity tm o prefabs: prefabs layer: layer)))
+      (map-object->entity tm o prefabs: prefabs layer: layer frame-delay: frame-delay)))
 
-  (define/keywords (tilemap-objects->entities tm #!key (prefabs #f) (layers #t))
+  (define/keywords (tilemap-objects->entities tm #!key (prefabs #f) (layers #t) (frame-delay 16))
     (when (and prefabs (not (prefabs? prefabs)))
       (error 'tilemap-objects->entities
              "prefabs: must be a prefab collection (load-prefabs) or #f" prefabs))
@@ -168,6 +201,6 @@
                        (if (null? os)
                            out
                            (add (cdr os)
-                                (cons (object->entity/named tm (car ls) (car os) prefabs)
+                                (cons (object->entity/named tm (car ls) (car os) prefabs frame-delay)
                                       out))))))
               (else (loop (cdr ls) out)))))))

@@ -23,7 +23,7 @@ shot() {
 }
 
 shot getting-started 40 '((0 right down) (12))'
-shot platformer 150 '((0 right) (40 right a) (41 right) (90))'
+shot platformer 151 '((0 start) (1 right) (41 right a) (42 right) (91))'
 shot shmup 200 '((0 a))'
 shot topdown 160 '((0 up) (30 left) (90 down) (110))'
 shot sandbox 300

@@ -232,3 +232,49 @@
           (list (entity-ref again #:anim-frame) (entity-ref again #:anim-tick)
                 (entity-ref again #:anim-finished? 'none)))
     (test "and it plays its frames again" 1 (entity-ref (apply-animation #f again 16) #:tile-id))))
+
+(test-group "animation-tile: the frame shown before any step"
+  (test "the first animation's first frame" 28 (animation-tile (list (cons #:animations (list an-walk an-run)))))
+  (test "the animation #:anim-name names, at #:anim-frame" 12
+        (animation-tile (list (cons #:animations (list an-walk an-run)) (cons #:anim-name 'run) (cons #:anim-frame 2))))
+  (test "a plist animation" 5 (animation-tile (list (cons #:animations (list '(#:name idle #:frames ((5 . 2))))))))
+  (test "no #:animations: #f" #f (animation-tile '((#:type . box))))
+  (test-error "an unknown #:anim-name is named" (an-says? "no animation named" "fly")
+              (animation-tile (list (cons #:animations (list an-walk)) (cons #:anim-name 'fly)))))
+
+;; #:anim-event on each of n steps.
+(define (an-events e n)
+  (let loop ((i 0) (e e) (out '()))
+    (if (= i n)
+        (reverse out)
+        (let ((e2 (apply-animation #f e 16)))
+          (loop (+ i 1) e2 (cons (entity-ref e2 #:anim-event #f) out))))))
+
+(test-group "frame events: #:anim-event on the step a frame starts"
+  (let ((steps '((#:name . walk) (#:frames . (28 29 30 31)) (#:duration . 2)
+                 (#:events . ((1 . step) (3 . step)))))
+        (swing '((#:name . swing) (#:frames . (40 41 42)) (#:duration . 2) (#:loop? . #f)
+                 (#:events . ((0 . wind-up) (2 . hit))))))
+    (test "footsteps on frames 1 and 3, once each, every loop"
+          '(#f #f step #f #f #f step #f #f #f step #f)
+          (an-events (list (cons #:animations (list steps))) 12))
+    (test "frame 0's event on the very first step; a one-shot's last frame fires once"
+          '(wind-up #f #f #f hit #f #f #f)
+          (an-events (list (cons #:animations (list swing))) 8))
+    (test "a one-frame loop fires on each restart" '(tick #f tick #f)
+          (an-events (list (cons #:animations (list '((#:name . t) (#:frames . (1)) (#:duration . 2)
+                                                       (#:events . ((0 . tick)))))))
+                     4))
+    (test "after set-animation the new animation's first frame fires" '(wind-up)
+          (an-events (set-animation (list (cons #:animations (list steps swing)) (cons #:anim-frame 2)
+                                          (cons #:anim-tick 1))
+                                    'swing)
+                     1))
+    (test "the entity alist does not grow over 100 steps" #t
+          (let loop ((i 0) (e (list (cons #:animations (list steps)))) (n #f))
+            (if (= i 100)
+                (<= (length e) (+ n 1))
+                (let ((e2 (apply-animation #f e 16)))
+                  (loop (+ i 1) e2 (or n (length e2)))))))
+    (test-error "bad #:events are named" (an-says? "#:events" "walk")
+                (apply-animation #f (list (cons #:animations (list (cons '(#:events . (oops)) an-walk)))) 16))))

@@ -320,7 +320,7 @@
         (tw-value (tw-x 100 duration: 10 delay: 5) tw-box #:x '(8)))
   (test "the delay applies once, not before each repeat" 6
         (tw-steps-to-finish (tw-x 100 duration: 10 delay: 10 repeat: 1) tw-box 5 100))
-  (test "delay then repeat, traced" '(0 0 50 0 50 100)
+  (test "delay then repeat, traced: the end of the first run shows" '(0 0 50 100 50 100)
         (tw-trace (tw-x 100 duration: 10 delay: 10 repeat: 1) tw-box #:x 6 5)))
 
 (test-group "repeat"
@@ -331,9 +331,9 @@
         (tw-finished-after (tw-x 100 duration: 10 repeat: 2) tw-box (tw-repeat 29 1)))
   (test "repeat 5 with 16 ms steps over 100 ms runs: ceiling(600/16) steps" 38
         (tw-steps-to-finish (tw-x 100 duration: 100 repeat: 5) tw-box 16 1000))
-  (test "each run restarts from the start" '(80 90 0 10 20)
+  (test "each run restarts from the start, after its end showed" '(80 90 100 10 20)
         (list-tail (tw-trace (tw-x 100 duration: 10 repeat: 2) tw-box #:x 12 1) 7))
-  (test "and the third run too" '(90 0 10)
+  (test "and the third run too" '(90 100 10)
         (list-tail (tw-trace (tw-x 100 duration: 10 repeat: 2) tw-box #:x 21 1) 18))
   (test "a repeating tween ends on the target" 100
         (tw-value (tw-x 100 duration: 10 repeat: 2) tw-box #:x (tw-repeat 40 1)))
@@ -354,7 +354,8 @@
     (test "two runs go there and back" '(50 100 50 0)
           (tw-trace t tw-box #:x 4 5))
     (test "two runs take 20 ms" 20 (tw-steps-to-finish t tw-box 1 1000))
-    (test "the way back at 12 ms" 80 (tw-value t tw-box #:x '(12))))
+    (test "a step across the turn shows the turn" 100 (tw-value t tw-box #:x '(12)))
+    (test "and the next step goes on from 12 ms, the way back" 80 (tw-value t tw-box #:x '(12 0))))
   (test "an even number of runs (2) ends on the start" 0
         (tw-value (tw-x 100 duration: 10 repeat: 1 yoyo?: #t) tw-box #:x '(7 7 7)))
   (test "an even number of runs (4) ends on the start" 0
@@ -367,16 +368,16 @@
                                 ease: 'cubic-out)
                     e #:x (tw-repeat 4 5))))
   (test "the return retraces the curve: quad-in 3 ms back is 100 * (7/10)^2" 49
-        (tw-value (tw-x 100 duration: 10 repeat: 1 yoyo?: #t ease: 'quad-in) tw-box #:x '(13)))
+        (tw-value (tw-x 100 duration: 10 repeat: 1 yoyo?: #t ease: 'quad-in) tw-box #:x '(13 0)))
   (test "yoyo forever passes the ends at every run boundary" '(100 0 100 0)
         (let ((vs (tw-trace (tw-x 100 duration: 10 repeat: -1 yoyo?: #t) tw-box #:x 40 1)))
           (map (lambda (i) (list-ref vs i)) '(9 19 29 39)))))
 
 (test-group "leftover time carries over"
-  (test "7 ms steps over 10 ms runs" '(70 40 100)
-        (tw-trace (tw-x 100 duration: 10 repeat: 1) tw-box #:x 3 7))
+  (test "6 ms steps over 10 ms runs: the end shows, then 8 ms into the second run" '(60 100 80 100)
+        (tw-trace (tw-x 100 duration: 10 repeat: 1) tw-box #:x 4 6))
   (test "one large step skips whole runs: 35 ms of 10 ms runs is 5 ms into the 4th" 50
-        (tw-value (tw-x 100 duration: 10 repeat: 5) tw-box #:x '(35)))
+        (tw-value (tw-x 100 duration: 10 repeat: 5) tw-box #:x '(35 0)))
   (test-assert "... and the tween is still running"
     (not (tw-finished-after (tw-x 100 duration: 10 repeat: 5) tw-box '(35))))
   (test "a step past the end finishes exactly on the end value" 100
@@ -386,12 +387,15 @@
     (define (state dts)
       (let-values (((t e) (tw-run (make) tw-box dts)))
         (list (entity-ref e #:x) (entity-ref e #:y) (tween-finished? t))))
+    ;; (a step that ends a run shows that end: a last step of 0 shows where the clock is)
     (test "how 40 ms are split does not matter (one step vs 1 ms steps)"
-          (state '(40)) (state (tw-repeat 40 1)))
+          (state '(40 0)) (state (append (tw-repeat 40 1) '(0))))
     (test "how 40 ms are split does not matter (uneven steps)"
-          (state '(40)) (state '(2 9 1 13 0 15)))
+          (state '(40 0)) (state '(2 9 1 13 0 15 0)))
     (test "40 ms: delay 3, three runs, 7 ms into the 4th, a return: quad-in-out(3/10) = 9/50"
-          '(18 14/5 #f) (state '(40)))))
+          '(18 14/5 #f) (state '(40 0)))
+    (test "the step of 40 ms ends the third run, a forward one: it shows the targets"
+          '(100 -30 #f) (state '(40)))))
 
 (test-group "duration 0"
   (test "the first step reaches the target" 100 (tw-value (tw-x 100 duration: 0) tw-box #:x '(16)))
@@ -484,3 +488,121 @@
                               ease: 'bounce-out))
                (e1 (step-tweens #f e 16)))
           (list (length e1) (length (run-steps e1 10000 16))))))
+
+;;; ------------------------------------------------------------------
+;;; Ends that fall between frames, tween-to, sequences and groups.
+
+;; The value of `key` after each of `n` step-tweens of `dt`.
+(define (tw-steps e key n dt)
+  (let loop ((i 0) (e e) (out '()))
+    (if (= i n)
+        (reverse out)
+        (let ((e2 (step-tweens #f e dt)))
+          (loop (+ i 1) e2 (cons (entity-ref e2 key) out))))))
+
+(test-group "an end between two frames shows exactly"
+  ;; 2500 ms is not a whole number of 16 ms frames: the frame that passes
+  ;; 2500 shows the turn itself, 176, not a value 12 ms on the way back
+  (let* ((lift '((#:type . lift) (#:y . 96)))
+         (ys (tw-steps (entity-set lift #:tween (make-tween lift props: '((#:y . 176)) duration: 2500
+                                                            repeat: -1 yoyo?: #t))
+                       #:y 700 16)))
+    (test "a 2500 ms yoyo stepped 16 ms turns at exactly 176" 176 (foldl max 0 ys))
+    (test "on the frame that passes 2500 ms" 176 (list-ref ys 156))
+    (test "and back at exactly 96 on the frame that passes 5000 ms" 96 (list-ref ys 312))
+    (test "the frame after the turn is 28 ms on the way back: 176 - 80 * 28/2500" (- 176 (* 80 28/2500))
+          (list-ref ys 157))))
+
+(test-group "tween-to: starts read when the first run begins"
+  (test "from where the entity is when it starts" '(55 60)
+        (tw-steps (entity-set (entity-set tw-box #:x 50) #:tween (tween-to '((#:x . 100)) duration: 80))
+                  #:x 2 8))
+  (test "a delay: the start is the value when the delay ends" '(999 1099/2 100)
+        (let-values (((t e) (tw-run (tween-to '((#:x . 100)) duration: 10 delay: 10) tw-box '(5))))
+          (let-values (((t1 e1) (tween-step t (entity-set e #:x 999) 5)))
+            (let-values (((t2 e2) (tween-step t1 e1 5)))
+              (let-values (((t3 e3) (tween-step t2 e2 5)))
+                (map (lambda (e) (entity-ref e #:x)) (list e1 e2 e3)))))))
+  (test-error "a key the entity lacks is an error naming it when the tween starts"
+              (tw-raised? 'tween-to "box 7" "#:z")
+              (step-tweens #f (entity-set tw-box #:tween (tween-to '((#:z . 1)) duration: 10)) 16))
+  (test-error "a bad target is an error at once" (tw-raised? 'tween-to "target" "#:x")
+              (tween-to '((#:x . "far")))))
+
+(test-group "sequences"
+  (define (seq . parts) (entity-set tw-box #:tween (apply tween-sequence parts)))
+  (test "one after the other, the second from where the first left" '(50 100 175/2 75 125/2)
+        (tw-steps (seq (tween-to '((#:x . 100)) duration: 20) (tween-to '((#:x . 50)) duration: 40))
+                  #:x 5 10))
+  (test "a part that ends between frames shows its end; its leftover time is not lost"
+        '(80 100 86 78 70 62 54 50 50)
+        ;; 100 in 25 ms, stepped 20: 25 ends in the 2nd step, its 15 ms left
+        ;; are given with the 3rd step: 35 ms into a 125 ms way back is 86 ...
+        (tw-steps (seq (tween-to '((#:x . 100)) duration: 25) (tween-to '((#:x . 50)) duration: 125))
+                  #:x 9 20))
+  (test "waits and calls take no frame of their own" '((0 #f) (0 #t) (50 #t) (100 #t))
+        (let loop ((e (seq (tween-wait 20) (tween-call (lambda (e) (entity-set e #:rang? #t)))
+                           (tween-to '((#:x . 100)) duration: 20)))
+                   (n 0) (out '()))
+          (if (= n 4)
+              (reverse out)
+              (let ((e2 (step-tweens #f e 10)))
+                (loop e2 (+ n 1) (cons (list (entity-ref e2 #:x) (entity-ref e2 #:rang? #f)) out))))))
+  (test "repeat: 2 plays the parts three times, restarting each from where it is" '(100 0 100 0 100 0 0)
+        (tw-steps (seq (tween-to '((#:x . 100)) duration: 10) (tween-to '((#:x . 0)) duration: 10) repeat: 2)
+                  #:x 7 10))
+  (test "its on-complete runs once, at the end, and #:tween is gone" '(1 #f 0)
+        (let* ((n 0)
+               (e (seq (tween-to '((#:x . 100)) duration: 10) (tween-to '((#:x . 0)) duration: 10)
+                       repeat: 1 on-complete: (lambda (e) (set! n (+ n 1)) e)))
+               (end (let loop ((e e) (i 0)) (if (= i 20) e (loop (step-tweens #f e 5) (+ i 1))))))
+          (list n (entity-ref end #:tween #f) (entity-ref end #:x))))
+  (test "a sequence of make-tween parts keeps each one's own starts" '(100 20 10)
+        (tw-steps (seq (tw-x 100 duration: 10) (make-tween (entity-set tw-box #:x 30) props: '((#:x . 10))
+                                                           duration: 20))
+                  #:x 3 10))
+  (test-assert "repeat -1 plays for ever: still there after 1000 steps"
+    (tween-track? (entity-ref (let loop ((e (seq (tween-wait 3) (tween-call (lambda (e) e)) repeat: -1)) (i 0))
+                                (if (= i 1000) e (loop (step-tweens #f e 16) (+ i 1))))
+                              #:tween #f)))
+  (test-error "repeat -1 of parts that take no time is an error, not a hang"
+              (tw-says? "took no time")
+              (step-tweens #f (seq (tween-call (lambda (e) e)) repeat: -1) 16))
+  (test-error "a part that is no tween is an error naming its place" (tw-raised? 'tween-sequence "part 2" "42")
+              (tween-sequence (tween-wait 1) 42))
+  (test-error "an unknown keyword is named" (tw-says? "tween-sequence" "repaet:")
+              (tween-sequence (tween-wait 1) repaet: 2))
+  (test-error "a call that returns no entity names the entity" (tw-says? "box 7" "tween-call" "nope")
+              (step-tweens #f (seq (tween-call (lambda (e) 'nope))) 16)))
+
+(test-group "parallel groups and several tweens on one entity"
+  (test "all at once; done when the longest is" '((50 25/2 #t) (100 15 #t) (100 35/2 #t) (100 20 #f))
+        (let loop ((e (entity-set tw-box #:tween (tween-parallel (tween-to '((#:x . 100)) duration: 20)
+                                                                (tween-to '((#:y . 20)) duration: 40))))
+                   (i 0) (out '()))
+          (if (= i 4)
+              (reverse out)
+              (let ((e2 (step-tweens #f e 10)))
+                (loop e2 (+ i 1) (cons (list (entity-ref e2 #:x) (entity-ref e2 #:y)
+                                             (and (entity-ref e2 #:tween #f) #t))
+                                       out))))))
+  (test "entity-add-tween runs a second tween beside the first" '((10 15) (20 20))
+        (let* ((e (entity-set tw-box #:tween (tween-to '((#:x . 20)) duration: 20)))
+               (e (entity-add-tween e (tween-to '((#:y . 20)) duration: 20)))
+               (e1 (step-tweens #f e 10))
+               (e2 (step-tweens #f e1 10)))
+          (list (list (entity-ref e1 #:x) (entity-ref e1 #:y)) (list (entity-ref e2 #:x) (entity-ref e2 #:y)))))
+  (test "a callback that sets #:tween adds it to what is playing" '(100 7)
+        (let* ((e (entity-set (entity-set tw-box #:z 0) #:tween
+                              (tween-sequence (tween-call (lambda (e) (entity-set e #:tween (tween-to '((#:z . 7))
+                                                                                                      duration: 30))))
+                                              (tween-to '((#:x . 100)) duration: 30))))
+               (e (let loop ((e e) (i 0)) (if (= i 4) e (loop (step-tweens #f e 10) (+ i 1))))))
+          (list (entity-ref e #:x) (entity-ref e #:z))))
+  (test "a group in a sequence, then a call" '(#t 100 30)
+        (let* ((e (entity-set tw-box #:tween
+                              (tween-sequence (tween-parallel (tween-to '((#:x . 100)) duration: 10)
+                                                              (tween-to '((#:y . 30)) duration: 20))
+                                              (tween-call (lambda (e) (entity-set e #:done? #t))))))
+               (e (let loop ((e e) (i 0)) (if (= i 3) e (loop (step-tweens #f e 10) (+ i 1))))))
+          (list (entity-ref e #:done? #f) (entity-ref e #:x) (entity-ref e #:y)))))

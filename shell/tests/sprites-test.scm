@@ -310,6 +310,20 @@
               '(9 9 10 10) (handle-exceptions exn (error-text exn) (seen lit-box e)))
         (loop (+ frame 1) e)))))
 
+;; An animated entity before apply-animation ever ran (a frozen scene,
+;; a title drawn over it): no #:tile-id yet, its current frame is drawn.
+(test-group "sprites: an animated entity shows its frame before the pipeline runs"
+  (let ((anims (list '((#:name . idle) (#:frames . (2 1)) (#:duration . 5))
+                     '((#:name . walk) (#:frames . (1 2)) (#:duration . 5)))))
+    (test "no #:tile-id: the first animation's first frame (the yellow tile)" sp-yellow
+          ((sp-draw (list #:x 3 #:y 2 #:animations anims)) 5 5))
+    (test "#:anim-name and #:anim-frame choose it" (list sp-red sp-green sp-blue sp-white)
+          (quadrants (sp-draw (list #:x 3 #:y 2 #:animations anims #:anim-name 'idle #:anim-frame 1)) 3 2))
+    (test "the sprite path too (#:alpha)" sp-yellow
+          ((sp-draw (list #:x 3 #:y 2 #:animations anims #:alpha 255)) 5 5))
+    (test "a #:tile-id, once written, is what is drawn" (list sp-red sp-green sp-blue sp-white)
+          (quadrants (sp-draw (list #:x 3 #:y 2 #:animations anims #:tile-id 1)) 3 2))))
+
 (destroy-texture! quads-tex)
 (destroy-texture! solids-tex)
 (free-surface! sp-surface)

@@ -8,7 +8,7 @@
 (import scheme (chicken base) (chicken file) (chicken format) (chicken string)
         srfi-4 (downstroke test) (downstroke sdl2) (downstroke entity)
         (downstroke scene) (downstroke tilemap) (downstroke renderer)
-        (downstroke prefabs) (downstroke engine))
+        (downstroke prefabs) (downstroke engine) (only (downstroke animation) apply-animation))
 (include-relative "../../tests/pixels.scm")
 
 (unless (sdl-initialized?) (init!))
@@ -599,6 +599,45 @@
                 (lambda (e) (substring-index "time: must be a finite number of milliseconds" (error-text e)))
                 (render-scene! ly-renderer (make-scene tilemap: (load-tilemap path))
                                textures: ly-textures time: +nan.0))))
+
+(test-group "objects as entities: a tile object keeps its Tiled animation"
+  ;; gid 2 animates: local 1 for 100 ms, local 2 for 150 ms, local 3 for 100 ms
+  (let ((path (ly-path "animated-objects.tmx")))
+    (with-output-to-file path
+      (lambda ()
+        (print "<?xml version=\"1.0\" encoding=\"UTF-8\"?>")
+        (print "<map version=\"1.10\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"4\" height=\"3\" tilewidth=\"8\" tileheight=\"8\" infinite=\"0\">")
+        (print " <tileset firstgid=\"1\" name=\"t\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"4\" columns=\"4\">")
+        (print "  <image source=\"tiles.png\" width=\"32\" height=\"8\"/>")
+        (print "  <tile id=\"1\"><animation><frame tileid=\"1\" duration=\"100\"/><frame tileid=\"2\" duration=\"150\"/><frame tileid=\"3\" duration=\"100\"/></animation></tile>")
+        (print " </tileset>")
+        (print " <objectgroup id=\"2\" name=\"coins\">")
+        (print "  <object id=\"1\" type=\"coin\" gid=\"2\" x=\"8\" y=\"16\" width=\"8\" height=\"8\"/>")
+        (print "  <object id=\"2\" type=\"coin\" gid=\"3\" x=\"16\" y=\"16\" width=\"8\" height=\"8\"/>")
+        (print " </objectgroup>")
+        (print "</map>")))
+    (let* ((tm (load-tilemap path))
+           (es (tilemap-objects->entities tm))
+           (frames (lambda (e) (let ((as (entity-ref e #:animations #f)))
+                                 (and as (entity-ref (car as) #:frames))))))
+      ;; ends at 100, 250, 350 ms: ticks 6.25, 15.6, 21.9 -> 6, 16, 22
+      (test "its frames are gids, each ending on the 16 ms tick nearest Tiled's end" '((2 . 6) (3 . 10) (4 . 6))
+            (frames (car es)))
+      (test "the animation is named tiled" 'tiled (entity-ref (car (entity-ref (car es) #:animations)) #:name))
+      (test "a tile Tiled does not animate gets none" #f (frames (cadr es)))
+      (test "frame-delay: sets the tick (10 ms: 10, 15, 10)" '((2 . 10) (3 . 15) (4 . 10))
+            (frames (car (tilemap-objects->entities tm frame-delay: 10))))
+      (test "a prefab's own #:animations win" '((7 . 1))
+            (frames (car (tilemap-objects->entities
+                          tm prefabs: (parse-prefabs '((prefabs (coin #:animations (((#:name . spin) (#:frames . ((7 . 1))))))))
+                                                     source: "test prefabs")))))
+      (test "it plays with the pipeline's animation step: tile 2 for 6 frames, then 3"
+            '(2 2 2 2 2 2 3)
+            (let loop ((i 0) (e (car es)) (out '()))
+              (if (= i 7)
+                  (reverse out)
+                  (let ((e2 (apply-animation #f e 16)))
+                    (loop (+ i 1) e2 (cons (entity-ref e2 #:tile-id) out)))))))))
 
 (free-surface! ly-surface)
 ;; ly-dir is removed by written-maps-test.scm, which compares its maps with Tiled's export
