@@ -378,10 +378,26 @@
   ;; here, so its bar spans half the view (16 of 32 px) at y 3
   (let* ((shot "/tmp/downstroke-profile-shot.png")
          (g (run-game debug?: #t frame-delay: 10 update: (lambda (g dt) (run-busy 12)))))
+    (game-debug-corner-set! g 'top-left)
     (game-run! g frames: 3 screenshot: shot)
     (test "debug?: the update: bar is drawn along the top, as long as its share of the budget"
           '((60 140 255 255) (60 140 255 255))
           (list (png-pixel shot 0 3) (png-pixel shot 15 3)))
+    (delete-file* shot))
+  ;; by default the readout sits at the bottom right, clear of a HUD at
+  ;; the top left: the bars grow leftwards from the right edge
+  (let* ((shot "/tmp/downstroke-profile-corner.png")
+         (g (run-game debug?: #t frame-delay: 10 update: (lambda (g dt) (run-busy 12))
+                      render: (lambda (g) (let ((r (game-renderer g)))
+                                            (render-draw-color-set! r 10 20 30)
+                                            (render-fill-rect! r (make-rect 0 0 16 8)))))))
+    (game-run! g frames: 3 screenshot: shot)
+    (test "the default corner: the update: bar along the bottom right (y 24 - 9 + 3)"
+          '((60 140 255 255) (60 140 255 255))
+          (list (png-pixel shot 31 18) (png-pixel shot 16 18)))
+    (test "the HUD at the top left is not covered" '((10 20 30 255) (10 20 30 255))
+          (list (png-pixel shot 0 0) (png-pixel shot 15 3)))
+    (test-error "a corner that is none is an error" (game-debug-corner-set! g 'middle))
     (delete-file* shot)))
 
 ;; The debug overlay toggled by its action (f3 by default) while the game
@@ -397,6 +413,7 @@
                                               (case (game-frame g)
                                                 ((0 3) (push-key-event! 'key-down 'f3))
                                                 ((1 4) (push-key-event! 'key-up 'f3)))))))
+                  (game-debug-corner-set! g 'top-left)
                   (set! log '())
                   (game-run! g frames: frames screenshot: shot)
                   (reverse log))))
