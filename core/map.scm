@@ -588,7 +588,7 @@
     (let loop ((layers (tilemap-layers tm)) (i 0))
       (cond ((null? layers)
              (error 'tilemap-layer
-                    (sprintf "~a: no tile layer ~s; its tile layers are ~a (by name, or by index from 0)"
+                    (sprintf "~a: no such layer ~s; its tile layers are ~s (by name, or by index from 0)"
                              (or (tilemap-source tm) "the map") which
                              (map layer-name (tilemap-layers tm)))))
             ((if (string? which)
