@@ -962,7 +962,7 @@
        (let ((name (car p)))
          (cond ((member name grid-layer-properties)
                 (unless (boolean? (cdr p))
-                  (tmx-error path "layer ~s: property ~a is ~s, of type ~a, not a bool; in Tiled give it the type bool (type=\"bool\" value=\"false\")"
+                  (tmx-error path "layer ~s: property ~a is ~s, of type ~a, not a bool; in Tiled give it the type bool (type=\"bool\")"
                              (layer-name layer) name (cdr p) (property-type (cdr p)))))
                ((near-grid-property name)
                 => (lambda (known)
