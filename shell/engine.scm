@@ -317,7 +317,16 @@
   ;;; ------------------------------------------------------------------
   ;;; The game shell.
   ;;;
-  ;;; (game-run! game #!key frames input-script record headless? screenshot)
+  ;;; (game-run! game #!key frames input-script record headless? screenshot
+  ;;;            repl screenshots trace trace-file (command-line #t))
+  ;;;
+  ;;; The command line (command-line-arguments, or command-line: a list of
+  ;;; strings; #f: none) gives what a keyword does not: --headless,
+  ;;; --frames N, --script FILE, --screenshot FILE, --screenshot-at N FILE,
+  ;;; --trace WHO:KEY,..., --trace-file FILE ((downstroke run-options)).
+  ;;; screenshots: ((frame . "file.png") ...) and the script's (screenshot
+  ;;; "file.png") commands save those frames; trace: ((who #:key ...) ...)
+  ;;; prints those keys after every frame.
   ;;;
   ;;; Opens SDL (unless it is already initialised, in which case it is
   ;;; left initialised at the end), then a window of (width * scale) x
