@@ -13,8 +13,9 @@
 (module (downstroke keywords)
   (define/keywords
    ;; for sibling modules only: what define/keywords expands into, and the
-   ;; distance (downstroke check) measures misspelt entity keys with
-   check-keywords edit-distance)
+   ;; distance and the slip (downstroke check), the map loader and the
+   ;; input configuration measure misspelt names with
+   check-keywords edit-distance one-slip?)
 
   (import scheme (chicken base) (chicken format) (chicken keyword) (chicken string))
   (import-for-syntax (chicken keyword))
@@ -54,6 +55,18 @@
                           (next (+ j 1) (cdr prev)
                                 (cons (min (+ (car out) 1) (+ (cadr prev) 1) (+ (car prev) cost))
                                       out))))))))))
+
+  ;; Whether b is one slip of the fingers from a: one edit, or two
+  ;; neighbouring characters swapped (two edits to edit-distance).
+  (define (one-slip? a b)
+    (or (= 1 (edit-distance a b))
+        (and (= (string-length a) (string-length b))
+             (let loop ((i 0))
+               (cond ((>= (+ i 1) (string-length a)) #f)
+                     ((char=? (string-ref a i) (string-ref b i)) (loop (+ i 1)))
+                     (else (and (char=? (string-ref a i) (string-ref b (+ i 1)))
+                                (char=? (string-ref a (+ i 1)) (string-ref b i))
+                                (string=? (substring a (+ i 2)) (substring b (+ i 2))))))))))
 
   (define (kw->string k) (string-append (keyword->string k) ":"))
 

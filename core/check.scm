@@ -9,17 +9,19 @@
 ;;;     #:skip-pipelines that is not a list of step symbols, an unknown
 ;;;     #:collision-mode, #:tags that are not a list, a #:tint that is not
 ;;;     (r g b), an #:emitter that is not one).
-;;; Nothing here runs in the per-frame pipeline: (downstroke scene)'s
-;;; scene-problems is called by hand, by make-scene and update-scene when
-;;; (scene-checks) is true (game-run! turns it on for a debug? game), and
-;;; the debug overlay reports what it finds.
+;;; Nothing here runs in the per-frame pipeline. By default (scene-checks
+;;; is #t) make-scene checks the entities it is given and scene-add-entity
+;;; the one it adds, and each problem is printed once on the error port;
+;;; 'always checks update-scene's entities too (game-run! sets it for a
+;;; debug? game, whose overlay also reports them every frame); #f, for a
+;;; release build, checks nothing. scene-problems asks by hand.
 
 (module (downstroke check)
   (entity-problems entity-list-problems scene-checks report-entity-problems!
    known-entity-keys)
 
   (import scheme (chicken base) (chicken format) (chicken keyword) (chicken port)
-          (only (downstroke keywords) edit-distance)
+          (only (downstroke keywords) one-slip?)
           (only (downstroke particles) emitter?)
           (downstroke entity))
 
@@ -45,24 +47,13 @@
 
   (define (kw k) (sprintf "~s" k))
 
-  ;; b is a with two neighbouring characters swapped (one slip of the
-  ;; fingers, though two edits to edit-distance).
-  (define (swapped? a b)
-    (and (= (string-length a) (string-length b))
-         (let loop ((i 0))
-           (cond ((>= (+ i 1) (string-length a)) #f)
-                 ((char=? (string-ref a i) (string-ref b i)) (loop (+ i 1)))
-                 (else (and (char=? (string-ref a i) (string-ref b (+ i 1)))
-                            (char=? (string-ref a (+ i 1)) (string-ref b i))
-                            (string=? (substring a (+ i 2)) (substring b (+ i 2)))))))))
-
   ;; A known key one edit (or one swap of neighbours) away from k, or #f.
   (define (near-key k)
     (let ((s (keyword->string k)))
       (let loop ((ks known-entity-keys))
         (cond ((null? ks) #f)
               ((let ((known (keyword->string (car ks))))
-                 (or (= 1 (edit-distance s known)) (swapped? s known)))
+                 (one-slip? s known))
                (car ks))
               (else (loop (cdr ks)))))))
 
@@ -145,8 +136,13 @@
           (reverse out)
           (loop (cdr es) (append (reverse (entity-problems (car es))) out)))))
 
-  ;; Whether make-scene and update-scene check the entities they are given.
-  (define scene-checks (make-parameter #f))
+  ;; #t: make-scene and scene-add-entity check the entities they are
+  ;; given; 'always: update-scene too; #f: nothing is checked.
+  (define scene-checks
+    (make-parameter #t (lambda (v)
+                         (unless (memq v '(#t #f always))
+                           (error 'scene-checks "must be #t, #f or 'always" v))
+                         v)))
 
   ;; Prints each problem not printed before (at most `remembered` kept),
   ;; on the error port, prefixed "downstroke: ". The debug overlay calls

@@ -175,13 +175,18 @@
   (define (entity-has-tag? e tag) (and (memq tag (entity-tags e)) #t))
 
   ;; How errors name an entity: its type, and its id or name when it has one.
+  ;; "slime", "slime \"boss\"", "slime (object 12)": its type, its #:id
+  ;; or #:name, and the Tiled object it came from, so that an error names
+  ;; which of five slimes, and where to find it in the map.
   (define (entity-label e)
-    (let ((type (entity-ref e #:type #f))
-          (id (or (entity-ref e #:id #f) (entity-ref e #:name #f))))
-      (cond ((and type id) (sprintf "~a ~s" type id))
-            (type (sprintf "~a" type))
-            (id (sprintf "~s" id))
-            (else "(untyped)"))))
+    (let* ((type (entity-ref e #:type #f))
+           (id (or (entity-ref e #:id #f) (entity-ref e #:name #f)))
+           (object (entity-ref e #:object-id #f))
+           (base (cond ((and type id) (sprintf "~a ~s" type id))
+                       (type (sprintf "~a" type))
+                       (id (sprintf "~s" id))
+                       (else "(untyped)"))))
+      (if object (sprintf "~a (object ~a)" base object) base)))
 
   (define (entity-skips-pipeline? e step)
     (let ((skips (entity-ref e #:skip-pipelines #f)))

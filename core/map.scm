@@ -586,7 +586,11 @@
   ;; A tile layer by index (0 = first) or by name.
   (define (tilemap-layer tm which)
     (let loop ((layers (tilemap-layers tm)) (i 0))
-      (cond ((null? layers) (error 'tilemap-layer "no such layer" which))
+      (cond ((null? layers)
+             (error 'tilemap-layer
+                    (sprintf "~a: no such layer ~s; its tile layers are ~s (by name, or by index from 0)"
+                             (or (tilemap-source tm) "the map") which
+                             (map layer-name (tilemap-layers tm)))))
             ((if (string? which)
                  (equal? which (layer-name (car layers)))
                  (eqv? which i))

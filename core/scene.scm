@@ -76,7 +76,8 @@
     ;; alists come back as they are, so the list is shared, not copied;
     ;; as-entity names an element that is no entity
     (let ((es (map/shared as-entity entities)))
-      (when (scene-checks) (report-entity-problems! es))
+      (when (if (eq? who 'update-scene) (eq? (scene-checks) 'always) (scene-checks))
+        (report-entity-problems! es))
       es))
 
   ;; What (downstroke check) finds wrong with the scene's entities: a list
@@ -199,7 +200,9 @@
       (if (eq? out (scene-entities s)) s (with-entities s out))))
 
   (define (scene-add-entity s e)
-    (with-entities s (append (scene-entities s) (list (as-entity e)))))
+    (let ((e (as-entity e)))
+      (when (scene-checks) (report-entity-problems! (list e)))
+      (with-entities s (append (scene-entities s) (list e)))))
 
   (define (scene-remove-entities s pred)
     (with-entities s (let loop ((es (scene-entities s)) (out '()))

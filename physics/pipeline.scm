@@ -14,9 +14,9 @@
 ;;; scenes, frame after frame, and compares every entity.
 
 (module (downstroke pipeline)
-  (contract-pipeline engine-pipeline)
+  (contract-pipeline engine-pipeline pipeline-failing-step contract-steps)
 
-  (import scheme (chicken base) (chicken fixnum) (chicken foreign)
+  (import scheme (chicken base) (chicken fixnum) (chicken foreign) (chicken condition)
           (downstroke scene) (downstroke physics) (downstroke tween)
           (downstroke animation) (downstroke particles) (downstroke srfi-197)
           (downstroke c-constants))
@@ -41,6 +41,44 @@
       (scene-transform-entities _ sync-groups)
       (scene-map-entities _ (cut apply-animation           <> <> dt))
       (scene-map-entities _ (cut step-particles            <> <> dt))))
+
+  ;; The same steps, in the same order, by the names #:skip-pipelines uses
+  ;; (groups and frame-start, which nothing skips, by their own), as
+  ;; (name . (scene dt) -> scene); the pipeline's suite checks that they
+  ;; make the same frames as the chain above, which a game copies.
+  (define (per-entity step) (lambda (scene dt) (scene-map-entities scene (cut step <> <> dt))))
+  (define (whole-list step) (lambda (scene dt) (scene-transform-entities scene step)))
+  (define contract-steps
+    (list (cons 'frame-start       (per-entity record-frame-start))
+          (cons 'tweens            (per-entity step-tweens))
+          (cons 'acceleration      (per-entity apply-acceleration))
+          (cons 'gravity           (per-entity apply-gravity))
+          (cons 'velocity-x        (per-entity apply-velocity-x))
+          (cons 'tile-collisions-x (per-entity resolve-tile-collisions-x))
+          (cons 'velocity-y        (per-entity apply-velocity-y))
+          (cons 'tile-collisions-y (per-entity resolve-tile-collisions-y))
+          (cons 'on-solid          (per-entity detect-on-solid))
+          (cons 'entity-collisions (whole-list resolve-entity-collisions))
+          (cons 'groups            (whole-list sync-groups))
+          (cons 'animation         (per-entity apply-animation))
+          (cons 'particles         (per-entity step-particles))))
+
+  ;; Which step raises an error on this scene, run one step at a time:
+  ;; (values name condition), or (values #f #f) when none does. The engine
+  ;; asks only after its fused pipeline raised, so that the error it
+  ;; passes on names the step; no frame that goes well pays for it.
+  (define (pipeline-failing-step scene dt)
+    (let loop ((steps contract-steps) (scene scene))
+      (if (null? steps)
+          (values #f #f)
+          (let ((next (call-with-current-continuation
+                       (lambda (k)
+                         (with-exception-handler
+                          (lambda (c) (k (cons 'failed c)))
+                          (lambda () ((cdar steps) scene dt)))))))
+            (if (and (pair? next) (eq? (car next) 'failed))
+                (values (caar steps) (cdr next))
+                (loop (cdr steps) next))))))
 
   ;;; The default pipeline runs only the steps some entity of the scene
   ;;; needs: one walk over each entity finds out which (`pipeline-needs`),

@@ -29,14 +29,15 @@
    game-add-state! game-state-set! game-current-state game-states
    game-state-push! game-state-pop! game-state-stack game-transition!
    make-transition transition? make-fade game-transitioning? game-scene-time
-   game-frame-profile game-paused? game-resume! game-quit!)
+   game-frame-profile game-paused? game-resume! game-quit!
+   game-debug-corner game-debug-corner-set!)
 
   (import (downstroke keywords))
   (import scheme (chicken base) (chicken format) (chicken process-context) (chicken fixnum)
           (chicken foreign) (chicken condition) (chicken file) (chicken pathname) (chicken port)
           (downstroke game) (downstroke level) (downstroke pipeline)
           (downstroke scene) (downstroke sdl2) (downstroke renderer) (downstroke input)
-          (downstroke repl) (downstroke camera) (downstroke save)
+          (downstroke repl) (downstroke camera) (downstroke save) (downstroke run-options)
           (only (downstroke timer) step-scene-timers))
 
   ;;; ------------------------------------------------------------------
@@ -119,7 +120,26 @@
   (define (default-engine-update game dt)
     (let ((scene (game-scene game)))
       (when scene
-        (game-scene-set! game (engine-pipeline scene dt)))))
+        (game-scene-set! game (handle-exceptions exn (raise-naming-step game scene dt exn)
+                                (engine-pipeline scene dt))))))
+
+  ;; An error of the engine's fused pipeline, raised again naming the
+  ;; frame and the step that raised it (the steps are run again one at a
+  ;; time on the scene the frame started with, which costs nothing on a
+  ;; frame that goes well). The condition keeps its kinds; the step is
+  ;; its property (pipeline step).
+  (define (raise-naming-step game scene dt exn)
+    (receive (step _) (pipeline-failing-step scene dt)
+      (if (and step ((condition-predicate 'exn) exn))
+          (abort (make-composite-condition
+                  (make-property-condition
+                   'exn 'location 'engine-update
+                   'message (sprintf "frame ~a, engine update, step ~a: ~a" (game-frame game) step
+                                     ((condition-property-accessor 'exn 'message "") exn))
+                   'arguments ((condition-property-accessor 'exn 'arguments '()) exn))
+                  (make-property-condition 'pipeline 'step step)
+                  exn))
+          (abort exn))))
 
   ;; The scene's engine-update field: #f runs the default pipeline, a
   ;; procedure runs instead of it as (proc game dt), 'none runs nothing.
@@ -237,37 +257,66 @@
 
   (define (game-fps game) (vector-ref (game-draw-clock game) 2))
 
-  ;; The overlay's readout: a bar per part along the top of the view, its
-  ;; length the part's share of the frame budget (the frame delay) across
-  ;; half the view: green engine update, blue update:, orange drawing; a
-  ;; grey tick marks the whole budget. Under the bars, in white, the
-  ;; frames drawn per second and the mean time of a frame's three parts.
+  ;; The overlay's readout, in a corner of the view the game chooses
+  ;; (game-debug-corner-set!: top-left, top-right, bottom-left or
+  ;; bottom-right, the default, away from the HUD games put at the top):
+  ;; a bar per part, its length the part's share of the frame budget (the
+  ;; frame delay) across half the view, growing from the corner's side:
+  ;; green engine update, blue update:, orange drawing; a grey tick marks
+  ;; the whole budget. Beside the bars, on the side away from the edge, in
+  ;; white, the frames drawn per second and the mean time of a frame's
+  ;; three parts.
   (define profile-colors '((0 220 0) (60 140 255) (255 160 0)))
+
+  (define debug-corners '(top-left top-right bottom-left bottom-right))
+  (define game-corners '())           ; (game . corner), for games that chose
+
+  (define (game-debug-corner game)
+    (let ((c (assq game game-corners))) (if c (cdr c) 'bottom-right)))
+
+  (define (game-debug-corner-set! game corner)
+    (unless (game? game) (error 'game-debug-corner-set! "not a game" game))
+    (unless (memq corner debug-corners)
+      (error 'game-debug-corner-set! (sprintf "the corner must be one of ~s, got ~s" debug-corners corner)))
+    (set! game-corners (cons (cons game corner) (remove-game-entry game game-corners))))
 
   (define (draw-profile! game renderer)
     (let* ((p (game-frame-profile game))
            (budget (game-frame-delay game))
-           (full (quotient (game-width game) 2)))
+           (gw (game-width game))
+           (gh (game-height game))
+           (full (quotient gw 2))
+           (corner (game-debug-corner game))
+           (right? (memq corner '(top-right bottom-right)))
+           (bottom? (memq corner '(bottom-left bottom-right)))
+           (bars-y (if bottom? (- gh 9) 0))
+           ;; a bar of length len from the corner's side
+           (bar (lambda (len y) (make-rect (if right? (- gw len) 0) y len 2))))
       (render-draw-color-set! renderer 128 128 128)
-      (render-fill-rect! renderer (make-rect full 0 1 9))
-      (let loop ((parts '(engine update render)) (colors profile-colors) (y 0))
+      (render-fill-rect! renderer (make-rect (if right? (- gw full 1) full) bars-y 1 9))
+      (let loop ((parts '(engine update render)) (colors profile-colors) (y bars-y))
         (unless (null? parts)
-          (let ((len (min (game-width game)
-                          (inexact->exact (round (* full (/ (cdr (assq (car parts) p)) budget)))))))
+          (let ((len (min gw (inexact->exact (round (* full (/ (cdr (assq (car parts) p)) budget)))))))
             (apply render-draw-color-set! renderer (car colors))
-            (when (> len 0) (render-fill-rect! renderer (make-rect 0 y len 2)))
+            (when (> len 0) (render-fill-rect! renderer (bar len y)))
             (loop (cdr parts) (cdr colors) (+ y 3)))))
       ;; the text is drawn in window pixels (scale 1), so that it stays
       ;; sharp at any scale, 2 pixels a dot past a scale of 2
       (render-draw-color-set! renderer 255 255 255)
       (receive (sx sy) (render-scale renderer)
-        (render-scale-set! renderer 1 1)
-        (draw-readout! renderer (profile-readout (cdr (assq 'fps p))
-                                                 (+ (cdr (assq 'engine p)) (cdr (assq 'update p))
-                                                    (cdr (assq 'render p))))
-                       2 (+ 2 (inexact->exact (ceiling (* 9 sy))))
-                       (if (> (min sx sy) 2) 2 1))
-        (render-scale-set! renderer sx sy))))
+        (let* ((px (if (> (min sx sy) 2) 2 1))
+               (text (profile-readout (cdr (assq 'fps p))
+                                      (+ (cdr (assq 'engine p)) (cdr (assq 'update p))
+                                         (cdr (assq 'render p)))))
+               (tw (- (* 4 px (string-length text)) px))
+               (bars-h (inexact->exact (ceiling (* 9 sy))))
+               (x (if right? (- (inexact->exact (floor (* gw sx))) tw 2) 2))
+               (y (if bottom?
+                      (- (inexact->exact (floor (* gh sy))) bars-h (* 5 px) 2)
+                      (+ 2 bars-h))))
+          (render-scale-set! renderer 1 1)
+          (draw-readout! renderer text x y px)
+          (render-scale-set! renderer sx sy)))))
 
   ;; "60 FPS 3.2 MS": the rate rounded, the frame time to a tenth of a ms.
   (define (profile-readout fps ms)
@@ -306,7 +355,16 @@
   ;;; ------------------------------------------------------------------
   ;;; The game shell.
   ;;;
-  ;;; (game-run! game #!key frames input-script record headless? screenshot)
+  ;;; (game-run! game #!key frames input-script record headless? screenshot
+  ;;;            repl screenshots trace trace-file (command-line #t))
+  ;;;
+  ;;; The command line (command-line-arguments, or command-line: a list of
+  ;;; strings; #f: none) gives what a keyword does not: --headless,
+  ;;; --frames N, --script FILE, --screenshot FILE, --screenshot-at N FILE,
+  ;;; --trace WHO:KEY,..., --trace-file FILE ((downstroke run-options)).
+  ;;; screenshots: ((frame . "file.png") ...) and the script's (screenshot
+  ;;; "file.png") commands save those frames; trace: ((who #:key ...) ...)
+  ;;; prints those keys after every frame.
   ;;;
   ;;; Opens SDL (unless it is already initialised, in which case it is
   ;;; left initialised at the end), then a window of (width * scale) x
@@ -389,27 +447,6 @@
     (or (game-headless? game)
         (equal? (get-environment-variable "SDL_VIDEODRIVER") "dummy")))
 
-  ;; The screenshot's pixels, read before a present: (u8vector w h).
-  (define (capture-pixels renderer)
-    (receive (buf w h) (render-read-pixels renderer) (list buf w h)))
-
-  (define (save-screenshot! path renderer surface captured)
-    (handle-exceptions exn
-        (error 'game-run!
-               (sprintf "screenshot: cannot save ~s: ~a" path
-                        ((condition-property-accessor 'exn 'message "unknown error") exn)))
-      (let ((dir (pathname-directory path)))
-        (when (and dir (not (directory-exists? dir)))
-          (create-directory dir #t)))
-      (if surface
-          (img-save-png! surface path)
-          (let* ((c (or captured (capture-pixels renderer)))
-                 (s (rgba-pixels->surface! (car c) (cadr c) (caddr c))))
-            (dynamic-wind
-             void
-             (lambda () (img-save-png! s path))
-             (lambda () (free-surface! s)))))))
-
   ;;; Pausing and quitting from outside the hooks (the REPL, mostly).
   ;;; With a REPL on, an error in a hook pauses the game instead of ending
   ;;; game-run!: frames stop (the window and the REPL stay live) until
@@ -440,7 +477,7 @@
         (thunk)))
 
   ;; One logical frame. Returns #t when the game should quit instead.
-  (define (run-frame! game script events rec-box #!optional repl)
+  (define (run-frame! game script events rec-box #!optional repl watch)
     (let* ((config (current-config game))
            (prev (game-input game))
            (from-events (input-update (if script (make-input-state config) prev) config events))
@@ -469,11 +506,12 @@
                  (when rec-box
                    (set-car! rec-box (input-record (car rec-box) (game-frame game) state)))
                  (guarded repl "a hook or the engine update" (lambda () (game-step! game)))
+                 (watch-frame-run! watch (game-scene game) (- (game-frame game) 1))
                  #f)))))
 
   ;; shot-box: #f, or a one-element list that receives the frame's pixels
   ;; (read before the present) for a windowed screenshot.
-  (define (render-frame! game renderer #!optional (shot-box #f))
+  (define (render-frame! game renderer #!optional (shot-box #f) (watch #f))
     (let ((scene (game-scene game))
           (t0 (now-ms)))
       (if (and scene (scene-drawn? game))
@@ -494,19 +532,20 @@
       (when (game-debug? game) (draw-profile! game renderer))
       (render-letterbox! renderer (game-width game) (game-height game))
       (when shot-box (set-car! shot-box (capture-pixels renderer)))
+      (watch-frame-drawn! watch (- (game-frame game) 1) renderer (game-surface game))
       (render-present! renderer)))
 
   ;; Returns the number of frames run.
   ;; repl: #f, or (game . repl), served once per pass of the loop.
-  (define (run-loop! game renderer script frames fast? rec-box shot-box repl)
+  (define (run-loop! game renderer script frames fast? rec-box shot-box repl watch)
     (let ((fd (game-frame-delay game)))
       (define (draw! shot)
-        (guarded repl "the render: hook or drawing" (lambda () (render-frame! game renderer shot))))
+        (guarded repl "the render: hook or drawing" (lambda () (render-frame! game renderer shot watch))))
       (let loop ((done 0) (acc 0) (last (get-ticks)))
         (when repl (repl-poll! (cdr repl)))
         (cond ((and frames (>= done frames)) done)
               (fast?
-               (if (run-frame! game script (input-poll-events!) rec-box repl)
+               (if (run-frame! game script (input-poll-events!) rec-box repl watch)
                    done
                    (begin (draw! #f)
                           (loop (+ done 1) 0 last))))
@@ -525,7 +564,7 @@
                                           (or (not frames) (>= (+ done n) frames))
                                           shot-box))
                               (loop (+ done n) acc now))
-                             ((run-frame! game script events rec-box repl) (+ done i))
+                             ((run-frame! game script events rec-box repl watch) (+ done i))
                              (else (batch (+ i 1) '())))))))))))
 
   (define unset (list 'unset))
@@ -533,25 +572,77 @@
   ;; repl: #f; 'stdin; a TCP port number (0: any free one); or a list of
   ;; such. The port and its secret's file are printed when the REPL opens;
   ;; its limits are the (downstroke repl) parameters of the moment.
+  (define (check-repl-option who repl)
+    (for-each (lambda (p)
+                (unless (or (eq? p 'stdin) (and (exact-integer? p) (<= 0 p 65535)))
+                  (error (sprintf "~a: repl: ~s must be #f, 'stdin, a TCP port number or a list of those"
+                                  who repl))))
+              (if (list? repl) repl (list repl))))
+
   (define (repl-options who repl)
+    (check-repl-option who repl)
     (let ((parts (if (list? repl) repl (list repl))))
-      (for-each (lambda (p)
-                  (unless (or (eq? p 'stdin) (and (exact-integer? p) (<= 0 p 65535)))
-                    (error (sprintf "~a: repl: ~s must be #f, 'stdin, a TCP port number or a list of those"
-                                    who repl))))
-                parts)
       (values (memq 'stdin parts)
               (let find ((ps parts)) (cond ((null? ps) #f) ((exact-integer? (car ps)) (car ps))
                                            (else (find (cdr ps))))))))
 
-  (define/keywords (game-run! game #!key (frames #f) (input-script #f) (record #f)
-                     (headless? unset) (screenshot #f) (repl #f))
+  ;; What the command line asks, under game-run!'s keywords: a keyword
+  ;; given wins. (values frames input-script headless? screenshot
+  ;; screenshots trace trace-file), each `unset` when neither says.
+  (define (run-request command-line frames input-script headless? screenshot screenshots trace trace-file)
+    (let* ((opts (cond ((eq? command-line #t) (command-line-run-options (command-line-arguments)))
+                       ((not command-line) '())
+                       ((and (list? command-line) (every-string? command-line))
+                        (command-line-run-options command-line))
+                       (else (error 'game-run! "command-line: must be #t, #f or a list of strings" command-line))))
+           (asked (lambda (given name) (if (eq? given unset) (run-option opts name unset) given)))
+           (headless (asked headless? 'headless))
+           (frames (cond ((not (eq? frames unset)) frames)
+                         ((assq 'frames opts) => cdr)
+                         ;; --headless alone would never end
+                         ((assq 'headless opts) 300)
+                         (else #f)))
+           (script (cond ((not (eq? input-script unset)) input-script)
+                         ((assq 'script opts) => (lambda (p) (read-script-file (cdr p))))
+                         (else #f))))
+      (values frames script headless (let ((s (asked screenshot 'screenshot))) (if (eq? s unset) #f s))
+              (append screenshots (let loop ((os opts))
+                                    (cond ((null? os) '())
+                                          ((eq? (caar os) 'screenshot-at) (cons (cdar os) (loop (cdr os))))
+                                          (else (loop (cdr os))))))
+              (append trace (let loop ((os opts))
+                              (cond ((null? os) '())
+                                    ((eq? (caar os) 'trace) (cons (cdar os) (loop (cdr os))))
+                                    (else (loop (cdr os))))))
+              (let ((f (asked trace-file 'trace-file))) (if (eq? f unset) #f f)))))
+
+  (define (every-string? l) (or (null? l) (and (string? (car l)) (every-string? (cdr l)))))
+
+  (define (read-script-file path)
+    (unless (file-exists? path)
+      (error 'game-run! (sprintf "--script: no file ~s" path)))
+    (handle-exceptions exn
+        (error 'game-run! (sprintf "--script: ~s is not one readable datum: ~a" path
+                                   ((condition-property-accessor 'exn 'message "") exn)))
+      (with-input-from-file path read)))
+
+  (define/keywords (game-run! game #!key (frames unset) (input-script unset) (record #f)
+                     (headless? unset) (screenshot unset) (repl #f)
+                     (screenshots '()) (trace '()) (trace-file unset) (command-line #t))
+    (receive (frames input-script headless? screenshot screenshots trace trace-file)
+        (run-request command-line frames input-script headless? screenshot screenshots trace trace-file)
+      (receive (input-script script-shots) (script-screenshots input-script)
+        (run-game! game frames input-script record headless? screenshot repl
+                   (append screenshots script-shots) trace trace-file))))
+
+  (define (run-game! game frames input-script record headless? screenshot repl screenshots trace trace-file)
     (unless (or (not frames) (and (exact-integer? frames) (>= frames 0)))
       (error 'game-run! "frames: must be a non-negative integer or #f" frames))
     (unless (or (not screenshot) (and (string? screenshot) (> (string-length screenshot) 0)))
       (error 'game-run! "screenshot: must be a file path (a string) or #f" screenshot))
     (let* ((config (current-config game))
            (script (and input-script (scripted-input input-script config)))
+           (watch (make-watch screenshots trace trace-file))
            (headless (if (eq? headless? unset) (headless-run? game) (and headless? #t)))
            (shot-box (and screenshot (not headless) (list #f)))
            (owns-sdl (not (sdl-initialized?)))
@@ -561,9 +652,9 @@
            (window #f) (surface #f) (renderer #f)
            (served #f)                  ; (game . repl) while a REPL runs
            (ran 0))
-      (when repl (repl-options 'game-run! repl))
-      ;; a debug game has its scenes' entities checked as they are made
-      (parameterize ((scene-checks (or (scene-checks) (game-debug? game))))
+      (when repl (check-repl-option 'game-run! repl))
+      ;; a debug game has its scenes' entities checked at every update-scene
+      (parameterize ((scene-checks (if (game-debug? game) 'always (scene-checks))))
       (dynamic-wind
        void
        (lambda ()
@@ -598,10 +689,11 @@
                (flush-output))))
          (game-start! game)
          (set! ran (run-loop! game renderer script frames
-                              (and frames headless) rec-box shot-box served))
+                              (and frames headless) rec-box shot-box served watch))
          (when screenshot
            (save-screenshot! screenshot renderer surface (and shot-box (car shot-box)))))
        (lambda ()
+         (watch-end! watch ran)
          (when served (repl-close! (cdr served)) (game-resume! game) (set! served #f))
          (when rec-box (game-recording-set! game (recording->script (car rec-box))))
          (free-textures! game)

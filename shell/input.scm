@@ -105,7 +105,7 @@
    input-from-held)
 
   (import (downstroke keywords))
-  (import scheme (chicken base) (chicken format) (chicken foreign)
+  (import scheme (chicken base) (chicken format) (chicken foreign) (chicken port)
           (only (downstroke sdl2) keycode->key key-symbols sdl-initialized? poll-events!
                 controller-buttons controller-axes))
 
@@ -271,8 +271,29 @@ EOF
               axes)
     (unless (and (real? dead-zone) (>= dead-zone 0))
       (error 'make-input-config "dead-zone: must be a non-negative number" dead-zone))
+    (warn-misspelt-actions actions (append keys buttons mouse (map (lambda (ax) (cons (car ax) (caddr ax))) axes)))
     (%make-input-config (config-actions (dedupe actions) keys buttons mouse axes)
                         keys buttons mouse axes dead-zone))
+
+  ;; A binding adds its action to the configuration, so a misspelt one
+  ;; (jmup for jump) makes a new action no code asks for, and the key does
+  ;; nothing. An action that is not declared and is one slip from one that
+  ;; is gets a warning naming the binding and the fix.
+  (define (warn-misspelt-actions declared bindings)
+    (for-each
+     (lambda (b)
+       (let ((a (cdr b)))
+         (unless (memq a declared)
+           (let ((near (let loop ((ds declared))
+                         (cond ((null? ds) #f)
+                               ((one-slip? (symbol->string a) (symbol->string (car ds))) (car ds))
+                               (else (loop (cdr ds)))))))
+             (when near
+               (with-output-to-port (current-error-port)
+                 (lambda ()
+                   (print (sprintf "downstroke: warning: make-input-config: ~s is bound to the action ~s, which actions: does not declare; did you mean ~s? (declare ~s in actions: if it is meant)"
+                                   (car b) a near a)))))))))
+     bindings))
 
   (define *default-input-config* (make-input-config))
 

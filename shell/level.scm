@@ -123,7 +123,7 @@
       (let* ((tm (load-tilemap tmx-path))
              (_ (check-map-orientation 'game-load-scene! tm))
              (convert (if (eq? objects->entities unset-key) (and prefabs #t) objects->entities))
-             (convert? (object-layer-selector 'game-load-scene! convert))
+             (convert? (object-layer-selector 'game-load-scene! convert tm))
              (map-entities (tilemap-objects->entities tm prefabs: prefabs layers: convert?
                                                          frame-delay: (game-frame-delay game)))
              (textures (load-textures! r (tilemap-images tm)))

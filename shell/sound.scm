@@ -27,6 +27,18 @@
 ;;; volume applies to every channel; it is remembered and applied again by
 ;;; init-audio!.
 ;;;
+;;; Volume groups. Every sound belongs to a group, a symbol: effects
+;;; unless load-sounds! is given group:; the music is the group music. A
+;;; group's volume (group-volume-set! group v, 1.0 until set, for any
+;;; symbol, so a game adds groups by naming them) multiplies the volume of
+;;; everything in it, playing now or later:
+;;;   a sound's channel: sound volume x its group's x play-sound's volume:
+;;;   the music:         music volume x the music group's.
+;;;
+;;; Channels. init-audio! allocates sound-channels: channels (32 unless
+;;; given; SDL_mixer alone gives 8), so that many sounds play at once;
+;;; (sound-channels-set! n) changes it while the device is open.
+;;;
 ;;; Music loops: -1 (the default) plays forever, n >= 1 plays n times
 ;;; (SDL_mixer's meaning of the count).
 ;;;
@@ -42,6 +54,7 @@
    load-sounds! sound-loaded? sound-names play-sound sound-playing?
    load-music! play-music! stop-music! music-loaded? music-playing?
    sound-volume-set! music-volume-set! sound-volume music-volume
+   group-volume-set! group-volume sound-group sound-channels sound-channels-set! channel-volume
    volume->mixer sound-resource-counts max-sound-file-size)
 
   (import (downstroke keywords) (downstroke media-header))
@@ -133,10 +146,14 @@ EOF
 
   ;; Opening twice is allowed and does nothing; shut down first to change
   ;; the format.
-  (define/keywords (init-audio! #!key (frequency 44100) (channels 2) (chunk-size 1024))
+  (define default-sound-channels 32)
+
+  (define/keywords (init-audio! #!key (frequency 44100) (channels 2) (chunk-size 1024)
+                                (sound-channels default-sound-channels))
     (check-positive 'init-audio! "frequency:" frequency)
     (check-positive 'init-audio! "channels:" channels)
     (check-positive 'init-audio! "chunk-size:" chunk-size)
+    (check-positive 'init-audio! "sound-channels:" sound-channels)
     (unless opened?
       (case ((foreign-lambda int "ds_open_audio" int int int) frequency channels chunk-size)
         ((1) (sound-error 'init-audio!
@@ -146,7 +163,30 @@ EOF
                 (foreign-value "SDL_INIT_AUDIO" unsigned-int))
                (sound-error 'init-audio! (sprintf "Mix_OpenAudio: ~a" text)))))
       (set! opened? #t)
+      (allocate-channels! sound-channels)
       (apply-sound-volume!))
+    (void))
+
+  ;; Each channel's group and play-sound volume, for the volumes applied
+  ;; when a group's or the sound volume changes: a vector of (group . v).
+  (define channel-groups (make-vector 0 #f))
+
+  (define (allocate-channels! n)
+    ((foreign-lambda int "Mix_AllocateChannels" int) n)
+    (let ((v (make-vector n #f)))
+      (do ((i 0 (+ i 1))) ((= i (min n (vector-length channel-groups))))
+        (vector-set! v i (vector-ref channel-groups i)))
+      (set! channel-groups v)))
+
+  (define (sound-channels)
+    (if opened? ((foreign-lambda int "Mix_AllocateChannels" int) -1) 0))
+
+  ;; Fewer channels stop the sounds on those taken away.
+  (define (sound-channels-set! n)
+    (check-positive 'sound-channels-set! "the channel count" n)
+    (check-open 'sound-channels-set!)
+    (allocate-channels! n)
+    (apply-sound-volume!)
     (void))
 
   ;;; ------------------------------------------------------------------
@@ -229,10 +269,29 @@ EOF
   (define (sound-names) (map car sounds))
   (define (sound-loaded? name) (and (assoc name sounds) #t))
 
+  ;; name -> group, for the sounds not in effects.
+  (define groups '())
+  (define (sound-group name)
+    (unless (assoc name sounds)
+      (error 'sound-group (sprintf "no sound named ~s (loaded: ~s)" name (sound-names)) name))
+    (let ((g (assoc name groups))) (if g (cdr g) 'effects)))
+
   ;; specs: ((name . "file.wav") ...). Every file is loaded before any is
   ;; registered, so a bad file leaves the registry as it was (the ones
   ;; loaded before it are freed).
-  (define (load-sounds! specs)
+  (define/keywords (load-sounds! specs #!key (group 'effects))
+    (unless (symbol? group)
+      (error 'load-sounds! "group: must be a symbol (effects, or a group of the game's)" group))
+    (load-sound-files! specs)
+    (for-each (lambda (s)
+                (set! groups (cons (cons (car s) group)
+                                   (let drop ((gs groups))
+                                     (cond ((null? gs) '())
+                                           ((equal? (caar gs) (car s)) (drop (cdr gs)))
+                                           (else (cons (car gs) (drop (cdr gs)))))))))
+              specs))
+
+  (define (load-sound-files! specs)
     (check-open 'load-sounds!)
     (unless (list? specs)
       (error 'load-sounds! "expected a list of (name . \"file.wav\") pairs" specs))
@@ -259,17 +318,25 @@ EOF
 
   ;; Plays on the first free channel and answers its number, or #f when
   ;; every channel is busy (the sound is dropped, as games expect).
-  (define (play-sound name)
+  (define/keywords (play-sound name #!key (volume 1.0))
     ;; closed audio first: with it the registry is empty, and "no sound
     ;; named" would hide the real cause
     (check-open 'play-sound)
-    (let ((entry (assoc name sounds)))
+    (let ((entry (assoc name sounds))
+          (v (clamp-volume 'play-sound volume)))
       (unless entry
         (error 'play-sound (sprintf "no sound named ~s (loaded: ~s)" name (sound-names))
                name))
-      (let ((ch ((foreign-lambda int "Mix_PlayChannel" int c-pointer int)
-                 -1 (chunk-ptr (cdr entry)) 0)))
-        (and (>= ch 0) ch))))
+      ;; the channel's volume is set before it starts, so no sample plays
+      ;; at the volume of the sound before it
+      (let ((ch ((foreign-lambda int "Mix_GroupAvailable" int) -1)))
+        (and (>= ch 0)
+             (let ((ch (begin
+                         (vector-set! channel-groups ch (cons (sound-group name) v))
+                         (apply-channel-volume! ch)
+                         ((foreign-lambda int "Mix_PlayChannel" int c-pointer int)
+                          ch (chunk-ptr (cdr entry)) 0))))
+               (and (>= ch 0) ch))))))
 
   (define (sound-playing? channel)
     (and opened?
@@ -312,28 +379,74 @@ EOF
   ;;; ------------------------------------------------------------------
   ;;; Volumes
 
-  (define (%volume->mixer who v)
+  ;; A volume as given, clamped to 0..1 (NaN is silence).
+  (define (clamp-volume who v)
     (unless (real? v)
       (error who "volume must be a number from 0.0 to 1.0" v))
-    (let ((v (cond ((nan? v) 0) ((< v 0) 0) ((> v 1) 1) (else v))))
-      (inexact->exact (round (* v 128)))))
+    (cond ((nan? v) 0) ((< v 0) 0) ((> v 1) 1) (else v)))
+
+  (define (%volume->mixer who v)
+    (inexact->exact (round (* (clamp-volume who v) 128))))
 
   ;; The mapping, exported for games that show a volume setting.
   (define (volume->mixer v) (%volume->mixer 'volume->mixer v))
 
   (define sound-level 128)
+  (define music-level 1)
+
+  ;; group -> volume 0..1, for the groups given one.
+  (define group-volumes '())
+
+  (define (group-volume group)
+    (unless (symbol? group) (error 'group-volume "a volume group is a symbol" group))
+    (let ((g (assq group group-volumes))) (if g (cdr g) 1.0)))
+
+  (define (group-volume-set! group v)
+    (unless (symbol? group)
+      (error 'group-volume-set! "a volume group is a symbol (music, effects, or one of the game's)" group))
+    (let ((v (clamp-volume 'group-volume-set! v)))
+      (set! group-volumes (cons (cons group v) (let drop ((gs group-volumes))
+                                                 (cond ((null? gs) '())
+                                                       ((eq? (caar gs) group) (drop (cdr gs)))
+                                                       (else (cons (car gs) (drop (cdr gs)))))))))
+    (apply-sound-volume!)
+    (apply-music-volume!)
+    (void))
+
+  (define mix-volume (foreign-lambda int "Mix_Volume" int int))
+
+  ;; A channel's volume: the sound volume times its sound's group's and
+  ;; the volume play-sound gave it.
+  (define (apply-channel-volume! ch)
+    (let ((g (vector-ref channel-groups ch)))
+      (mix-volume ch (if g
+                         (inexact->exact (round (* sound-level (group-volume (car g)) (cdr g))))
+                         sound-level))))
 
   (define (apply-sound-volume!)
     (when opened?
-      ((foreign-lambda int "Mix_Volume" int int) -1 sound-level)))
+      (do ((ch 0 (+ ch 1))) ((= ch (vector-length channel-groups)))
+        (apply-channel-volume! ch))))
+
+  ;; SDL_mixer's volume of one channel, 0..128.
+  (define (channel-volume ch)
+    (check-open 'channel-volume)
+    (unless (and (exact-integer? ch) (<= 0 ch) (< ch (vector-length channel-groups)))
+      (error 'channel-volume (sprintf "no channel ~s (channels 0 to ~a)" ch (- (vector-length channel-groups) 1))))
+    (mix-volume ch -1))
 
   (define (sound-volume-set! v)
     (set! sound-level (%volume->mixer 'sound-volume-set! v))
     (apply-sound-volume!)
     (void))
 
+  (define (apply-music-volume!)
+    ((foreign-lambda int "Mix_VolumeMusic" int)
+     (inexact->exact (round (* 128 music-level (group-volume 'music))))))
+
   (define (music-volume-set! v)
-    ((foreign-lambda int "Mix_VolumeMusic" int) (%volume->mixer 'music-volume-set! v))
+    (set! music-level (clamp-volume 'music-volume-set! v))
+    (apply-music-volume!)
     (void))
 
   ;; The volumes as SDL_mixer holds them, 0..128.
@@ -354,6 +467,8 @@ EOF
       ((foreign-lambda int "Mix_HaltMusic")))
     (for-each (lambda (e) (free-chunk! (cdr e))) sounds)
     (set! sounds '())
+    (set! groups '())
+    (set! channel-groups (make-vector 0 #f))
     (when current-music
       (free-music! current-music)
       (set! current-music #f))

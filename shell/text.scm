@@ -17,8 +17,21 @@
 ;;; draw-text! renders with TTF_RenderUTF8_Blended (anti-aliased) into a
 ;;; surface, makes a texture of it, copies it and frees both the texture and
 ;;; the surface before it returns, so drawing text every frame holds on to
-;;; nothing. The empty string draws nothing. A newline is not a line break
-;;; (SDL_ttf draws one line).
+;;; nothing. The empty string draws nothing. A newline starts a new line.
+;;;
+;;; Layout, for both kinds of font (as LÖVE's love.graphics.printf lays
+;;; out): (text-layout font string #!key width align scale) answers
+;;; (values lines w h), lines a list of (text x y w), each line's text, its
+;;; place from the block's top-left corner and its width. A newline always
+;;; breaks a line; with width: (pixels) a line also breaks at the last
+;;; space that lets it fit (the spaces at the break are dropped), and a word
+;;; wider than the width on its own breaks between characters. align: is
+;;; left, center (or centre) or right, within the width when one is given,
+;;; else within the widest line. w is the width when given, else the
+;;; widest line's; h is the font's height plus one line skip for each
+;;; further line (TTF_FontLineSkip; a sprite font's glyph height times the
+;;; scale). draw-text! and draw-sprite-text! take the same width: and
+;;; align: and draw that layout at (x, y), answering its (values w h).
 ;;;
 ;;; Bitmap sprite fonts: a texture holding a grid of equal glyph cells,
 ;;; `columns` cells to a row, the cell of character c at index
@@ -41,7 +54,7 @@
 
 (module (downstroke text)
   (open-font close-font! font? font-alive?
-   draw-text! text-size
+   draw-text! text-size text-layout font-line-skip
    make-sprite-font sprite-font? sprite-font-texture sprite-font-glyph-width
    sprite-font-glyph-height sprite-font-first-char sprite-font-columns
    draw-sprite-text! sprite-text-size
@@ -188,25 +201,168 @@ EOF
     (foreign-lambda int "downstroke_draw_text" c-pointer c-pointer c-string
                     int int int int int int (c-pointer int) (c-pointer int)))
 
-  (define/keywords (draw-text! renderer font string x y #!key (color '(255 255 255)))
+  ;; One line of TrueType text at whole pixels (x, y): (values w h) drawn.
+  (define (draw-line! who rp fp font c string x y)
+    (cond
+     ((zero? (string-length string)) (values 0 0))
+     ((or (> (abs x) far-text) (> (abs y) far-text)) (text-size font string))
+     (else
+      (let-location ((w int 0) (h int 0))
+        (let ((status (c-draw-text rp fp string x y
+                                   (car c) (cadr c) (caddr c) (cadddr c)
+                                   (location w) (location h))))
+          (case status
+            ((-1) (text-error who (sprintf "TTF_RenderUTF8_Blended: ~a" (ttf-get-error))))
+            ((-2) (text-error who (sprintf "SDL: ~a" (get-error))))
+            (else (values w h))))))))
+
+  (define/keywords (draw-text! renderer font string x y #!key (color '(255 255 255))
+                               (width #f) (align 'left))
     (let ((rp (renderer-pointer 'draw-text! renderer))
           (fp (live-font 'draw-text! font))
           (c (color-bytes 'draw-text! color))
           (x (pixel 'draw-text! "x" x))
           (y (pixel 'draw-text! "y" y)))
       (text-string 'draw-text! string)
+      (check-layout-options 'draw-text! width align)
+      (if (and (not width) (eq? align 'left) (not (has-newline? string)))
+          ;; one line, as SDL_ttf draws it: no layout to compute
+          (draw-line! 'draw-text! rp fp font c string x y)
+          (receive (lines w h) (layout 'draw-text! font string width align 1)
+            (for-each (lambda (l)
+                        (draw-line! 'draw-text! rp fp font c (car l) (+ x (cadr l)) (+ y (caddr l))))
+                      lines)
+            (values w h)))))
+
+  ;;; ------------------------------------------------------------------
+  ;;; Layout: lines broken at newlines and, given a width, at spaces.
+
+  (define (has-newline? s)
+    (let loop ((i 0))
+      (and (< i (string-length s))
+           (or (char=? (string-ref s i) #\newline) (loop (+ i 1))))))
+
+  (define (check-layout-options who width align)
+    (unless (or (not width) (and (exact-integer? width) (> width 0)))
+      (error who (sprintf "width: must be a positive integer (pixels) or #f, got ~s" width)))
+    (unless (memq align '(left center centre right))
+      (error who (sprintf "align: must be left, center or right, got ~s" align))))
+
+  ;; The distance between two lines' tops.
+  (define (font-line-skip font)
+    ((foreign-lambda int "TTF_FontLineSkip" c-pointer) (live-font 'font-line-skip font)))
+
+  (define (font-height font)
+    ((foreign-lambda int "TTF_FontHeight" c-pointer) (live-font 'text-layout font)))
+
+  ;; The paragraphs of s: the pieces between newlines.
+  (define (split-lines s)
+    (let loop ((i 0) (start 0) (out '()))
+      (cond ((= i (string-length s)) (reverse (cons (substring s start i) out)))
+            ((char=? (string-ref s i) #\newline) (loop (+ i 1) (+ i 1) (cons (substring s start i) out)))
+            (else (loop (+ i 1) start out)))))
+
+  ;; A paragraph as (word . spaces-after) pieces; leading spaces are a
+  ;; first piece with an empty word, so they are kept.
+  (define (words s)
+    (let ((n (string-length s)))
+      (define (run i space?)
+        (if (and (< i n) (eq? space? (char=? (string-ref s i) #\space))) (run (+ i 1) space?) i))
+      (let loop ((i 0) (out '()))
+        (if (>= i n)
+            (reverse out)
+            (let* ((we (run i #f)) (se (run we #t)))
+              (loop se (cons (cons (substring s i we) (substring s we se)) out)))))))
+
+  ;; The index just past the character that starts at byte i (UTF-8:
+  ;; continuation bytes are 10xxxxxx), so a long word breaks between
+  ;; characters, never inside one.
+  (define (next-char s i)
+    (let loop ((j (+ i 1)))
+      (if (and (< j (string-length s))
+               (= 2 (quotient (char->integer (string-ref s j)) 64)))
+          (loop (+ j 1))
+          j)))
+
+  ;; A word too wide for any line: its longest prefixes that fit (at
+  ;; least one character each), as lines; answers (values lines rest).
+  (define (break-word measure word width)
+    (let loop ((word word) (out '()))
       (cond
-       ((zero? (string-length string)) (values 0 0))
-       ((or (> (abs x) far-text) (> (abs y) far-text)) (text-size font string))
+       ;; the last character alone was too wide: it is the line in progress
+       ((and (string=? word "") (pair? out)) (values (reverse (cdr out)) (car out)))
+       ((<= (measure word) width) (values (reverse out) word))
        (else
-          (let-location ((w int 0) (h int 0))
-            (let ((status (c-draw-text rp fp string x y
-                                       (car c) (cadr c) (caddr c) (cadddr c)
-                                       (location w) (location h))))
-              (case status
-                ((-1) (text-error 'draw-text! (sprintf "TTF_RenderUTF8_Blended: ~a" (ttf-get-error))))
-                ((-2) (text-error 'draw-text! (sprintf "SDL: ~a" (get-error))))
-                (else (values w h)))))))))
+          (let fit ((end (next-char word 0)))
+            (let ((next (next-char word end)))
+              (if (and (< end (string-length word)) (<= (measure (substring word 0 next)) width))
+                  (fit next)
+                  (loop (substring word end) (cons (substring word 0 end) out)))))))))
+
+  ;; The lines of one paragraph, greedily filled to width.
+  (define (wrap-paragraph measure para width)
+    (if (not width)
+        (list para)
+        (let loop ((ws (words para)) (line #f) (pending "") (out '()))
+          ;; line: the text so far (#f: a line not started); pending: the
+          ;; spaces after it, kept only when a word follows on this line
+          ;; (a paragraph's leading spaces are kept: its first word is "")
+          (if (null? ws)
+              (reverse (cons (or line "") out))
+              (let* ((word (caar ws)) (spaces (cdar ws))
+                     (candidate (if (and line (not (string=? line "")))
+                                    (string-append line pending word)
+                                    word)))
+                (cond ((and (not line) (string=? word ""))
+                       (loop (cdr ws) spaces "" out))
+                      ((<= (measure candidate) width)
+                       (loop (cdr ws) candidate spaces out))
+                      ((and line (not (string=? line "")))
+                       ;; the word goes to a new line, its spaces before dropped
+                       (loop ws #f "" (cons line out)))
+                      (else
+                       (receive (full rest) (break-word measure word width)
+                         (loop (cdr ws) rest spaces (append (reverse full) out))))))))))
+
+  ;; (values lines w h) for a font with the given measure and line metrics.
+  (define (lay-out measure string width align skip height)
+    (let* ((texts (let loop ((ps (split-lines string)) (out '()))
+                    (if (null? ps)
+                        out
+                        (loop (cdr ps) (append out (wrap-paragraph measure (car ps) width))))))
+           (widths (map measure texts))
+           (box (or width (foldl max 0 widths))))
+      (let loop ((ts texts) (ws widths) (y 0) (out '()))
+        (if (null? ts)
+            (values (reverse out) box (if (null? texts) 0 (+ height (* skip (- (length texts) 1)))))
+            (loop (cdr ts) (cdr ws) (+ y skip)
+                  (cons (list (car ts)
+                              (case align
+                                ((left) 0)
+                                ((right) (- box (car ws)))
+                                (else (quotient (- box (car ws)) 2)))
+                              y (car ws))
+                        out))))))
+
+  (define (layout who font string width align scale)
+    (cond ((font? font)
+           (unless (eqv? scale 1)
+             (error who "scale: is for sprite fonts; a TrueType font's size is its point size" scale))
+           (lay-out (lambda (s) (if (string=? s "") 0 (receive (w h) (text-size font s) w)))
+                    string width align (font-line-skip font) (font-height font)))
+          ((sprite-font? font)
+           (check-scale who scale)
+           (let ((gw (* scale (sprite-font-glyph-width font)))
+                 (gh (* scale (sprite-font-glyph-height font))))
+             (lay-out (lambda (s) (* gw (string-length s))) string width align gh gh)))
+          (else (error who "not a font (open-font) or a sprite font (make-sprite-font)" font))))
+
+  (define/keywords (text-layout font string #!key (width #f) (align 'left) (scale 1))
+    (text-string 'text-layout string)
+    (check-layout-options 'text-layout width align)
+    (if (string=? string "")
+        (values '() (or width 0) 0)
+        (layout 'text-layout font string width align scale)))
 
   ;;; ------------------------------------------------------------------
   ;;; Sprite fonts
@@ -258,16 +414,28 @@ EOF
       (values (* cols (sprite-font-glyph-width sf) scale)
               (* lines (sprite-font-glyph-height sf) scale))))
 
-  (define/keywords (draw-sprite-text! renderer sf string x y #!key (scale 1))
+  (define/keywords (draw-sprite-text! renderer sf string x y #!key (scale 1) (width #f) (align 'left))
     (check-scale 'draw-sprite-text! scale)
     (text-string 'draw-sprite-text! string)
+    (check-layout-options 'draw-sprite-text! width align)
+    (let ((x0 (pixel 'draw-sprite-text! "x" x))
+          (y0 (pixel 'draw-sprite-text! "y" y)))
+      (if (and (not width) (eq? align 'left))
+          (draw-sprite-lines! renderer sf string x0 y0 scale)
+          (receive (lines w h) (if (string=? string "")
+                                   (values '() (or width 0) 0)
+                                   (layout 'draw-sprite-text! sf string width align scale))
+            (for-each (lambda (l)
+                        (draw-sprite-lines! renderer sf (car l) (+ x0 (cadr l)) (+ y0 (caddr l)) scale))
+                      lines)
+            (values w h)))))
+
+  (define (draw-sprite-lines! renderer sf string x0 y0 scale)
     (let* ((tex (sprite-font-texture sf))
            (gw (sprite-font-glyph-width sf))
            (gh (sprite-font-glyph-height sf))
            (columns (sprite-font-columns sf))
-           (first (char->integer (sprite-font-first-char sf)))
-           (x0 (pixel 'draw-sprite-text! "x" x))
-           (y0 (pixel 'draw-sprite-text! "y" y)))
+           (first (char->integer (sprite-font-first-char sf))))
       (receive (tw th) (texture-size tex)
         (let ((sheet-cols (min columns (quotient tw gw)))
               (sheet-rows (quotient th gh)))

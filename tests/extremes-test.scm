@@ -7,6 +7,9 @@
         (downstroke test) (downstroke entity) (downstroke tilemap) (downstroke tween)
         (downstroke scene) (downstroke physics) (downstroke engine) (downstroke pipeline))
 
+;; Bad entities are made here on purpose; their warnings would only be noise.
+(scene-checks #f)
+
 (define (ex-ent . plist) (plist->entity plist))
 
 ;; The S3 corridor: 400 x 4 tiles, column 300 solid (faces at 4800, 4816).

@@ -3,7 +3,7 @@
 ;;; order, scripted and recorded input, cleanup after errors, quitting,
 ;;; game states.
 
-(import scheme (chicken base) (chicken string) (chicken file) (chicken time) srfi-4 (only (downstroke util) take)
+(import scheme (chicken base) (chicken string) (chicken file) (chicken time) (chicken port) (chicken io) (chicken condition) srfi-4 (only (downstroke util) take)
         (downstroke test) (downstroke sdl2) (downstroke entity) (downstroke scene)
         (downstroke input) (downstroke engine)
         (only (downstroke tilemap) make-sheet-tileset))
@@ -378,10 +378,26 @@
   ;; here, so its bar spans half the view (16 of 32 px) at y 3
   (let* ((shot "/tmp/downstroke-profile-shot.png")
          (g (run-game debug?: #t frame-delay: 10 update: (lambda (g dt) (run-busy 12)))))
+    (game-debug-corner-set! g 'top-left)
     (game-run! g frames: 3 screenshot: shot)
     (test "debug?: the update: bar is drawn along the top, as long as its share of the budget"
           '((60 140 255 255) (60 140 255 255))
           (list (png-pixel shot 0 3) (png-pixel shot 15 3)))
+    (delete-file* shot))
+  ;; by default the readout sits at the bottom right, clear of a HUD at
+  ;; the top left: the bars grow leftwards from the right edge
+  (let* ((shot "/tmp/downstroke-profile-corner.png")
+         (g (run-game debug?: #t frame-delay: 10 update: (lambda (g dt) (run-busy 12))
+                      render: (lambda (g) (let ((r (game-renderer g)))
+                                            (render-draw-color-set! r 10 20 30)
+                                            (render-fill-rect! r (make-rect 0 0 16 8)))))))
+    (game-run! g frames: 3 screenshot: shot)
+    (test "the default corner: the update: bar along the bottom right (y 24 - 9 + 3)"
+          '((60 140 255 255) (60 140 255 255))
+          (list (png-pixel shot 31 18) (png-pixel shot 16 18)))
+    (test "the HUD at the top left is not covered" '((10 20 30 255) (10 20 30 255))
+          (list (png-pixel shot 0 0) (png-pixel shot 15 3)))
+    (test-error "a corner that is none is an error" (game-debug-corner-set! g 'middle))
     (delete-file* shot)))
 
 ;; The debug overlay toggled by its action (f3 by default) while the game
@@ -397,6 +413,7 @@
                                               (case (game-frame g)
                                                 ((0 3) (push-key-event! 'key-down 'f3))
                                                 ((1 4) (push-key-event! 'key-up 'f3)))))))
+                  (game-debug-corner-set! g 'top-left)
                   (set! log '())
                   (game-run! g frames: frames screenshot: shot)
                   (reverse log))))
@@ -423,3 +440,121 @@
     (test "zoom 2: half as far from the camera's corner" '(105 43)
           (receive (x y) (game-mouse-world-position g) (list x y)))
     (test "the screen position stays" '(10 6) (receive (x y) (game-mouse-position g) (list x y)))))
+
+;;; ------------------------------------------------------------------
+;;; A game's own headless runs: the demos' command line, screenshots at
+;;; several frames, traced keys, errors naming the step.
+
+;; A game whose every drawn frame is one colour, red 10 x (frames run), so
+;; a screenshot says which frame it is: frame N (from 0) is drawn red
+;; 10 (N + 1).
+(define (frame-coloured-game . args)
+  (apply run-game render: (lambda (g)
+                            (let ((r (game-renderer g)))
+                              (render-draw-color-set! r (* 10 (game-frame g)) 0 0)
+                              (render-fill-rect! r (make-rect 0 0 32 24))))
+         args))
+
+(define (shot-red path) (car (png-pixel path 5 5)))
+
+(test-group "game-run!: the command line of every game"
+  (let ((dir (create-temporary-directory)))
+    (define (in name) (string-append dir "/" name))
+    (test "--frames and --screenshot-at, twice: one run, two pictures" 5
+          (game-run! (frame-coloured-game) command-line: (list "--headless" "--frames" "5"
+                                                                "--screenshot-at" "1" (in "one.png")
+                                                                "--screenshot-at" "3" (in "three.png"))))
+    (test "frame 1 and frame 3, each as it was drawn" '(20 40)
+          (list (shot-red (in "one.png")) (shot-red (in "three.png"))))
+    (test "--screenshot: the last frame" 30
+          (begin (game-run! (frame-coloured-game) command-line: (list "--frames" "3" "--screenshot" (in "last.png")))
+                 (shot-red (in "last.png"))))
+    (test "a keyword wins over the command line" 2
+          (game-run! (frame-coloured-game) frames: 2 command-line: '("--frames" "5")))
+    (test "the game's own arguments are left alone" 1
+          (game-run! (frame-coloured-game) command-line: '("--level" "3" "--frames" "1" "extra")))
+    (test "--headless without --frames runs 300 frames (it would never end)" 300
+          (game-run! (run-game) command-line: '("--headless")))
+    (with-output-to-file (in "script.scm") (lambda () (write '((0 right) (2 right (tap a))))))
+    (let* ((held '())
+           (g (run-game update: (lambda (g dt) (set! held (cons (input-held? (game-input g) 'right) held))))))
+      (game-run! g command-line: (list "--frames" "3" "--script" (in "script.scm")))
+      (test "--script FILE drives the input" '(#t #t #t) (reverse held)))
+    (test-error "--frames without a number is an error naming it"
+                (lambda (e) (substring-index "--frames" ((condition-property-accessor 'exn 'message "") e)))
+                (game-run! (run-game) command-line: '("--frames" "many")))
+    (test-error "--screenshot-at without its file" (game-run! (run-game) command-line: '("--screenshot-at" "2")))
+    (test-error "--script of a file that is not there names it"
+                (lambda (e) (substring-index "nowhere.scm" ((condition-property-accessor 'exn 'message "") e)))
+                (game-run! (run-game) command-line: '("--frames" "1" "--script" "nowhere.scm")))
+    (delete-directory dir #t)))
+
+(test-group "game-run!: screenshots at frames and from a script"
+  (let ((dir (create-temporary-directory)))
+    (define (in name) (string-append dir "/" name))
+    (game-run! (frame-coloured-game) frames: 6 command-line: #f
+               screenshots: `((4 . ,(in "four.png")) (0 . ,(in "zero.png"))))
+    (test "screenshots: ((frame . file) ...), in any order" '(10 50)
+          (list (shot-red (in "zero.png")) (shot-red (in "four.png"))))
+    (let* ((held '())
+           (g (frame-coloured-game update: (lambda (g dt) (set! held (cons (input-held? (game-input g) 'right) held))))))
+      (game-run! g frames: 4 command-line: #f
+                 input-script: `((0 right) (2 (screenshot ,(in "script.png")))))
+      (test "(screenshot FILE) in a script entry: that frame's picture" 30 (shot-red (in "script.png")))
+      (test "an entry holding only the command changes nothing the input does" '(#t #t #t #t) (reverse held)))
+    (game-run! (frame-coloured-game) frames: 3 command-line: #f
+               input-script: `((1 right (screenshot ,(in "with-action.png")))))
+    (test "beside actions, in the same entry" 20 (shot-red (in "with-action.png")))
+    (test "a frame the run never drew: no file, and a warning naming it"
+          '(#f #t)
+          (let ((said (call-with-output-string
+                       (lambda (port)
+                         (parameterize ((current-error-port port))
+                           (game-run! (run-game) frames: 2 command-line: #f screenshots: `((9 . ,(in "nine.png")))))))))
+            (list (file-exists? (in "nine.png"))
+                  (and (substring-index "frame 9 was not drawn" said) (substring-index "nine.png" said) #t))))
+    (test-error "screenshots: must be (frame . file)" (game-run! (run-game) frames: 1 command-line: #f screenshots: '((-1 . "x.png"))))
+    (test-error "a screenshot command needs its file"
+                (game-run! (run-game) frames: 1 command-line: #f input-script: '((0 (screenshot)))))
+    (delete-directory dir #t)))
+
+(test-group "game-run!: traced keys"
+  (let* ((walker (lambda () (list #:type 'player #:name "p1" #:x 0 #:vx 1 #:width 4 #:height 4)))
+         (game (lambda () (run-game create: (lambda (g) (game-scene-set! g (make-sprite-scene
+                                                                              entities: (list (walker) (list #:type 'coin #:x 9)))))))))
+    (test "trace: ((who key ...)): a line per frame per entity traced, after the frame ran"
+          '("frame 0 player \"p1\": #:x 1 #:vx 1" "frame 1 player \"p1\": #:x 2 #:vx 1" "frame 2 player \"p1\": #:x 3 #:vx 1")
+          (string-split (with-output-to-string
+                          (lambda () (game-run! (game) frames: 3 command-line: #f trace: '((player #:x #:vx)))))
+                        "\n"))
+    (test "by name, with a key an entity lacks shown as -"
+          '("frame 0 player \"p1\": #:hp -")
+          (string-split (with-output-to-string
+                          (lambda () (game-run! (game) frames: 1 command-line: #f trace: '(("p1" #:hp)))))
+                        "\n"))
+    (let ((file (string-append (create-temporary-directory) "/trace.txt")))
+      (game-run! (game) command-line: (list "--frames" "2" "--trace" "*:x" "--trace-file" file))
+      (test "--trace *:x --trace-file FILE: every entity, into the file"
+            '("frame 0 player \"p1\": #:x 1" "frame 0 coin: #:x 9" "frame 1 player \"p1\": #:x 2" "frame 1 coin: #:x 9")
+            (with-input-from-file file read-lines)))
+    (test-error "--trace without KEYs is an error" (game-run! (game) command-line: '("--trace" "player")))
+    (test-error "trace: of a bad shape" (game-run! (game) frames: 1 command-line: #f trace: '((player x))))))
+
+(test-group "game-run!: an error of the engine update names the frame, the step and the entity"
+  (let* ((slimes (list (list #:type 'slime #:object-id 3 #:x 0 #:vx 1)
+                       (list #:type 'slime #:object-id 4 #:x 10 #:vx 1)))
+         (g (run-game create: (lambda (g) (game-scene-set! g (make-sprite-scene entities: slimes)))
+                      update: (lambda (g dt)
+                                ;; the second slime's speed becomes NaN at frame 2
+                                (when (= (game-frame g) 2)
+                                  (game-scene-set! g (update-scene (game-scene g)
+                                                                   entities: (map (lambda (e) (if (eqv? 4 (entity-ref e #:object-id))
+                                                                                                  (entity-set e #:vx (/ 0. 0.))
+                                                                                                  e))
+                                                                                  (scene-entities (game-scene g)))))))))
+         (caught (handle-exceptions e e (game-run! g frames: 5 command-line: #f) #f)))
+    (test-assert "the message: frame, step, which slime (its Tiled object), the key"
+                 (let ((m ((condition-property-accessor 'exn 'message "") caught)))
+                   (and (substring-index "frame 3, engine update, step velocity-x: entity slime (object 4): #:vx is +nan.0" m) #t)))
+    (test "the step is the condition's (pipeline step) property" 'velocity-x
+          ((condition-property-accessor 'pipeline 'step #f) caught))))

@@ -166,14 +166,33 @@
                   (cons (cons (+ first (caar fs)) n) out))))))
 
   ;; A predicate on layers from a layers: value (#t, names, or a predicate).
-  (define (object-layer-selector who layers)
+  ;; Given the map, a name that is none of its object layers is an error
+  ;; naming the file and listing them: a misspelt name would otherwise
+  ;; convert nothing, without a word.
+  (define (object-layer-selector who layers #!optional tm)
     (cond ((eq? layers #t) (lambda (l) #t))
           ((not layers) (lambda (l) #f))
           ((procedure? layers) layers)
           ((and (list? layers) (every-string? layers))
+           (when tm (for-each (lambda (name) (check-object-layer-name who tm name)) layers))
            (lambda (l) (and (member (layer-name l) layers) #t)))
           (else (error who "layers: must be #t, #f, a list of layer names or a predicate"
                        layers))))
+
+  (define (check-object-layer-name who tm name)
+    (let ((names (map layer-name (tilemap-object-layers tm))))
+      (unless (member name names)
+        (error who
+               (sprintf "~a: no object layer named ~s~a; its object layers are ~s"
+                        (or (tilemap-source tm) "map made in code") name
+                        (if (let tile? ((ls (tilemap-all-layers tm)))
+                              (and (pair? ls)
+                                   (or (and (equal? (layer-name (car ls)) name)
+                                            (not (eq? (layer-kind (car ls)) 'object)))
+                                       (tile? (cdr ls)))))
+                            " (a layer of that name holds no objects)"
+                            "")
+                        names)))))
 
   (define (every-string? l) (or (null? l) (and (string? (car l)) (every-string? (cdr l)))))
 
@@ -192,7 +211,7 @@
     (when (and prefabs (not (prefabs? prefabs)))
       (error 'tilemap-objects->entities
              "prefabs: must be a prefab collection (load-prefabs) or #f" prefabs))
-    (let ((keep? (object-layer-selector 'tilemap-objects->entities layers)))
+    (let ((keep? (object-layer-selector 'tilemap-objects->entities layers tm)))
       (let loop ((ls (tilemap-object-layers tm)) (out '()))
         (cond ((null? ls) (reverse out))
               ((keep? (car ls))

@@ -17,7 +17,7 @@
   (import (downstroke keywords) (only (downstroke media-header) file-problem image-file-size))
   (import scheme (chicken base) (chicken fixnum) (chicken format)
           (chicken bitwise) (chicken pathname) (chicken condition)
-          (chicken string) (chicken file) srfi-4
+          (chicken string) (chicken file) (chicken port) srfi-4
           (downstroke xml) (downstroke decode) (downstroke map) (downstroke tmj)
           (only (downstroke util) filter append-map any list-min list-max string-concatenate take drop
                 make-hash-table hash-table-ref/default hash-table-set!
@@ -114,8 +114,6 @@
                 (list (sprintf "... ~a more groups ..." (- n 7)))
                 (drop parts (- n 4)))))
 
-  (define (intersperse xs sep)
-    (if (or (null? xs) (null? (cdr xs))) xs (cons (car xs) (cons sep (intersperse (cdr xs) sep)))))
   (define (sub-ctx ctx what) (cons (car ctx) (cons (cdr ctx) what)))
 
   (define (bad-attr ctx node name expected)
@@ -951,6 +949,38 @@
           (layer-objects layer)))
        layers)))
 
+;; The layer properties the collision grid reads (core/map.scm): one
+  ;; that is not a bool would be read as "collides" and a misspelt one
+  ;; not read at all, so the decoration collides with no word said. A
+  ;; wrong type is an error; a name one slip from one of them a warning
+  ;; (a game may have a property of its own of that name).
+  (define grid-layer-properties '("collides" "one-way"))
+
+  (define (check-layer-properties path layer)
+    (for-each
+     (lambda (p)
+       (let ((name (car p)))
+         (cond ((member name grid-layer-properties)
+                (unless (boolean? (cdr p))
+                  (tmx-error path "layer ~s: property ~a is ~s, of type ~a, not a bool; in Tiled give it the type bool (type=\"bool\")"
+                             (layer-name layer) name (cdr p) (property-type (cdr p)))))
+               ((near-grid-property name)
+                => (lambda (known)
+                     (warn-map path "layer ~s: property ~s is not one Downstroke reads; did you mean ~s (a bool)?"
+                               (layer-name layer) name known))))))
+     (layer-properties layer)))
+
+  (define (near-grid-property name)
+    (let loop ((ks grid-layer-properties))
+      (cond ((null? ks) #f)
+            ((one-slip? name (car ks)) (car ks))
+            (else (loop (cdr ks))))))
+
+  ;; A mistake worth a word that does not stop the load, on the error port.
+  (define (warn-map path fmt . args)
+    (with-output-to-port (current-error-port)
+      (lambda () (print "downstroke: warning: " path ": " (apply sprintf fmt args)))))
+
   (define (read-tilemap path)
     (let* ((root (read-root (cons path "map") path 'map))
            (ctx (cons path "map"))
@@ -1041,6 +1071,7 @@
              ((tilesets) (sort-tilesets (state-tilesets st))))
           (check-gids path (map (lambda (l) (cons l (cons x0 y0))) tile-layers) tilesets)
           (check-object-gids path (filter (lambda (l) (eq? (layer-kind l) 'object)) all) tilesets)
+          (for-each (cut check-layer-properties path <>) tile-layers)
           (make-tilemap w h tw th tile-layers
                         properties: (parse-properties ctx root)
                         origin-col: x0 origin-row: y0

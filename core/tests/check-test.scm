@@ -64,8 +64,9 @@
           '("entity a: key #:gravity is not one Downstroke reads (did you mean #:gravity?)"
             "entity c: #:y is \"top\", not a finite number")
           (scene-problems s)))
-  (test "checks off (the default): make-scene says nothing" ""
-        (said (lambda () (make-scene entities: (list (ck #:type 'quiet #:gravityy #t #:gravty #t))))))
+  (test "checks off (scene-checks #f, a release build): make-scene says nothing" ""
+        (said (lambda () (parameterize ((scene-checks #f))
+                           (make-scene entities: (list (ck #:type 'quiet #:gravityy #t #:gravty #t)))))))
   (test "checks on: make-scene says each problem on the error port"
         "downstroke: entity loud: key #:solid is not one Downstroke reads (did you mean #:solid?)\n"
         (said (lambda () (parameterize ((scene-checks #t))
@@ -73,3 +74,18 @@
   (test "and only once: the same problem again is not repeated" ""
         (said (lambda () (parameterize ((scene-checks #t))
                            (update-scene (make-scene) entities: (list (ck #:type 'loud #:solid #t))))))))
+
+(test-group "check: on by default, when a scene is made or an entity added"
+  (test "make-scene says a misspelt key with no parameter set"
+        "downstroke: entity player: key #:widht is not one Downstroke reads (did you mean #:width)\n"
+        (said (lambda () (make-scene entities: (list (ck #:type 'player #:x 0 #:widht 16 #:height 16))))))
+  (test "a solid lift without #:width is said when it is added"
+        "downstroke: entity lift (object 7): no #:width: the collision steps treat it as zero-size\n"
+        (said (lambda () (scene-add-entity (make-scene) (ck #:type 'lift #:object-id 7 #:solid? #t #:height 8)))))
+  (test "update-scene, called every frame by games, checks nothing by default" ""
+        (said (lambda () (update-scene (make-scene) entities: (list (ck #:type 'per-frame #:solid #t))))))
+  (test "'always (a debug game) checks update-scene's entities too"
+        "downstroke: entity debugged: key #:solid is not one Downstroke reads (did you mean #:solid?)\n"
+        (said (lambda () (parameterize ((scene-checks 'always))
+                           (update-scene (make-scene) entities: (list (ck #:type 'debugged #:solid #t)))))))
+  (test-error "scene-checks takes #t, #f or 'always" (scene-checks 'sometimes)))

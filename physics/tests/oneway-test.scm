@@ -3,7 +3,7 @@
 ;;; below and from the side, and drops through on purpose with
 ;;; #:drop-through?.
 
-(import scheme (chicken base) (chicken format) (chicken file) (chicken io)
+(import scheme (chicken base) (chicken format) (chicken file) (chicken io) (chicken condition) (chicken string)
         (downstroke test) (downstroke entity) (downstroke scene) (downstroke tilemap)
         (downstroke pipeline))
 
@@ -130,8 +130,11 @@
       (test "a layer with one-way set: every tile of it" '(#t #t #f)
             (list (tilemap-one-way? tm 0 0) (tilemap-one-way? tm 1 0) (tilemap-solid? tm 0 0))))
     (ow-tmx path "  <properties><property name=\"one-way\" type=\"string\" value=\"true\"/></properties>" "")
-    (test "only a bool property counts (the string \"true\" does not)" '(#f #t)
-          (let ((tm (load-tilemap path))) (list (tilemap-one-way? tm 0 0) (tilemap-solid? tm 0 0))))
+    (test-error "only a bool property counts: the string \"true\" is an error naming the layer and the fix"
+                (lambda (e) (let ((m ((condition-property-accessor 'exn 'message "") e)))
+                              (and (substring-index "layer \"ground\": property one-way is \"true\", of type string, not a bool" m)
+                                   (substring-index "type=\"bool\"" m))))
+                (load-tilemap path))
     (delete-file* path)))
 
 (test-group "one-way entities"

@@ -15,6 +15,9 @@
         (downstroke entity) (downstroke tilemap) (downstroke scene) (downstroke physics)
         (downstroke tween) (downstroke animation) (downstroke pipeline) (downstroke particles))
 
+;; Random bodies often lack a size on purpose: the checks would say so.
+(scene-checks #f)
+
 (define pl-seed 4242)
 (define (pl-rand n)
   (set! pl-seed (modulo (+ (* 1103515245 pl-seed) 12345) 2147483648))
@@ -319,3 +322,44 @@
           (entity-set* e #:d 4 #:b 20 #:e 5))
     (test "the tail after the last key set is shared" #t
           (eq? (cddr e) (cddr (entity-set* e #:a 10 #:b 20))))))
+
+;; The steps by name, which the engine runs one at a time to say which
+;; step raised an error: in turn they make contract-pipeline's frames, and
+;; pipeline-failing-step names the step whose error contract-pipeline raises.
+(test-group "contract-steps: contract-pipeline's steps by name; pipeline-failing-step"
+  (test "named as #:skip-pipelines names them"
+        '(frame-start tweens acceleration gravity velocity-x tile-collisions-x velocity-y
+          tile-collisions-y on-solid entity-collisions groups animation particles)
+        (map car contract-steps))
+  (let loop ((k 0) (different 0) (errors 0))
+    (if (= k 60)
+        (begin (test "60 random scenes, 10 frames each: the same frames, the same errors" 0 different)
+               (test-assert "some of them raised an error" (> errors 0)))
+        (let* ((n (pl-pick 1 2 3 5 8))
+               (entities (let make ((i 0)) (if (= i n) '() (cons (pl-with-tween (pl-entity i)) (make (+ i 1))))))
+               ;; a third of the scenes hold a body with a bad number
+               (bad (list (cons #:type 'bad) (cons #:x 0) (cons #:y 0) (cons #:width 4) (cons #:height 4)
+                          (cons #:gravity? (pl-chance 50)) (cons #:solid? (pl-chance 50))
+                          (cons (pl-pick #:vx #:vy #:x #:width) (pl-pick (/ 0. 0.) "3" (/ 1. 0.)))))
+               (scene (parameterize ((scene-checks #f))
+                        (make-scene tilemap: (if (pl-chance 80) (pl-map) #f)
+                                    collision-mode: (pl-pick 'swept 'discrete)
+                                    entities: (if (pl-chance 33) (append entities (list bad)) entities)))))
+          (let frame ((f 0) (scene scene) (different different) (errors errors))
+            (if (= f 10)
+                (loop (+ k 1) different errors)
+                (let ((whole (pl-outcome (lambda () (contract-pipeline scene 16))))
+                      (stepped (pl-outcome (lambda () (foldl (lambda (s step) ((cdr step) s 16)) scene contract-steps)))))
+                  (receive (step c) (pipeline-failing-step scene 16)
+                    (cond ((not (or (and (scene? whole) (scene? stepped)
+                                         (equal? (scene-entities whole) (scene-entities stepped)))
+                                    (equal? whole stepped)))
+                           (frame 10 scene (+ different 1) errors))
+                          ((scene? whole)
+                           (frame (+ f 1) whole (if step (+ different 1) different) errors))
+                          (else
+                           (frame 10 scene
+                                  (if (and step (equal? (cadr whole) ((condition-property-accessor 'exn 'message) c)))
+                                      different
+                                      (+ different 1))
+                                  (+ errors 1))))))))))))

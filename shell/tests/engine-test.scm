@@ -6,6 +6,9 @@
         (downstroke scene) (downstroke physics) (downstroke tween) (downstroke animation)
         (downstroke engine) (downstroke pipeline) (downstroke srfi-197))
 
+;; Bad entities are made here on purpose; their warnings would only be noise.
+(scene-checks #f)
+
 (define (ent . plist) (plist->entity plist))
 (define (repeat n x) (if (= n 0) '() (cons x (repeat (- n 1) x))))
 

@@ -473,3 +473,24 @@
             recording)
       (test "the replay: the same frames, actions and pointer" live replayed)
       (test "and it stops where the live run did" 9 frames))))
+
+;; A binding adds its action, so a misspelt one would make a key do nothing
+;; with no word said.
+(test-group "make-input-config: a key bound to a misspelt action is said"
+  (import (chicken port))
+  (define (said thunk)
+    (call-with-output-string (lambda (port) (parameterize ((current-error-port port)) (thunk)))))
+  (test "jmup for jump: a warning naming the key, the action and the fix"
+        "downstroke: warning: make-input-config: z is bound to the action jmup, which actions: does not declare; did you mean jump? (declare jmup in actions: if it is meant)\n"
+        (said (lambda () (make-input-config actions: '(left right jump) keys: '((left . left) (z . jmup))))))
+  (test "a swap of two letters too (lfet)"
+        #t (and (substring-index "did you mean left?" (said (lambda () (make-input-config actions: '(left right) keys: '((a . lfet)))))) #t))
+  (test "an action of its own, far from every declared one, is said nothing of" ""
+        (said (lambda () (make-input-config actions: '(left right) keys: '((x . fire))))))
+  (test "a declared action is said nothing of" ""
+        (said (lambda () (make-input-config actions: '(jump) keys: '((z . jump))))))
+  (test "the misspelt action still exists (the warning changes nothing else)"
+        #t (and (memq 'jmup (input-config-actions
+                            (parameterize ((current-error-port (open-output-string)))
+                              (make-input-config actions: '(jump) keys: '((z . jmup))))))
+                #t)))

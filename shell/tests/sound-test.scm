@@ -138,6 +138,49 @@
     (test "clamped to 0" 0 (sound-volume))
     (sound-volume-set! 1.0))
 
+  ;; SDL_mixer alone gives 8 channels: a ninth coin would be dropped.
+  (test-group "channels: more than 8 sounds at once"
+    (test "32 channels by default" 32 (sound-channels))
+    (let ((chs (let loop ((i 0) (out '())) (if (= i 20) (reverse out) (loop (+ i 1) (cons (play-sound 'long) out))))))
+      (test "20 sounds started together each get a channel of their own" 20
+            (length (let dedupe ((l chs) (out '()))
+                      (cond ((null? l) out)
+                            ((or (not (car l)) (memv (car l) out)) (dedupe (cdr l) out))
+                            (else (dedupe (cdr l) (cons (car l) out))))))))
+    (sound-channels-set! 48)
+    (test "sound-channels-set! changes the count" 48 (sound-channels))
+    (test-error "a count of 0 is an error" (sound-channels-set! 0))
+    (sound-channels-set! 32))
+
+  ;; A channel's volume is sound volume x its group's x play-sound's.
+  (test-group "volume groups"
+    (load-sounds! `((click . ,snd-wav)) group: 'ui)
+    (test "a sound's group: effects unless load-sounds! says" '(effects ui)
+          (list (sound-group 'beep) (sound-group 'click)))
+    (test "every group is at 1.0 until set, a game's own too" '(1.0 1.0 1.0)
+          (map group-volume '(effects music ui)))
+    (let ((beep (play-sound 'long))
+          (click (play-sound 'click))
+          (soft (play-sound 'long volume: 0.5)))
+      (test "full volume before any group is turned down" '(128 128 64)
+            (map channel-volume (list beep click soft)))
+      (group-volume-set! 'effects 0.5)
+      (test "effects at 0.5: its playing sounds follow, the ui group does not" '(64 128 32)
+            (map channel-volume (list beep click soft)))
+      (test "a sound played later gets its group's volume" 64 (channel-volume (play-sound 'beep)))
+      (sound-volume-set! 0.5)
+      (test "the sound volume multiplies every group" '(32 64 16)
+            (map channel-volume (list beep click soft)))
+      (sound-volume-set! 1.0)
+      (group-volume-set! 'ui 0)
+      (test "a game's own group silenced" 0 (channel-volume click))
+      (group-volume-set! 'effects 1.0)
+      (group-volume-set! 'ui 1.0))
+    (test-error "a group is a symbol" (group-volume-set! "music" 0.5))
+    (test-error "load-sounds! group: is a symbol" (load-sounds! `((x . ,snd-wav)) group: "ui"))
+    (test-error "sound-group of an unknown sound names it" (snd-says? "no sound named" "nope")
+                (sound-group 'nope)))
+
   (test-group "music"
     (test-error "play-music! before load-music!" (snd-says? "load-music!")
                 (play-music!))
@@ -152,6 +195,14 @@
     (test "music volume clamps" 128 (music-volume))
     (music-volume-set! 0.1)
     (test "0.1 -> 13" 13 (music-volume))
+    (music-volume-set! 1.0)
+    (group-volume-set! 'music 0.25)
+    (test "the music group multiplies the music's volume" 32 (music-volume))
+    (music-volume-set! 0.5)
+    (test "both at once" 16 (music-volume))
+    (group-volume-set! 'music 1.0)
+    (test "the music group back at 1.0" 64 (music-volume))
+    (music-volume-set! 0.1)
     (stop-music!)
     (test "stopped" #f (music-playing?))
     (play-music! loops: 1)
@@ -168,7 +219,7 @@
     (test-assert "new music plays" (music-playing?)))
 
   (test-group "shutdown"
-    (test "three live resources" 3 (snd-live))
+    (test "four live resources (beep, long, click, the music)" 4 (snd-live))
     (shutdown-audio!)
     (test "everything freed" 0 (snd-live))
     (test "closed" #f (audio-open?))

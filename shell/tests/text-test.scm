@@ -177,6 +177,101 @@
     (test-error "glyph-width is required" (make-sprite-font tex glyph-height: 4))
     (destroy-texture! tex)))
 
+(define (append-map* f l) (if (null? l) '() (append (f (car l)) (append-map* f (cdr l)))))
+(define (iota* n) (let loop ((i (- n 1)) (out '())) (if (< i 0) out (loop (- i 1) (cons i out)))))
+
+;; Layout as LÖVE's printf lays out: lines broken at newlines and at the
+;; last space that fits a width, long words between characters, each line
+;; placed by the alignment. A sprite font's widths are exact: 4 px a glyph.
+(test-group "text: layout with a sprite font (exact)"
+  (let* ((tex (img-load-texture! tx-renderer (tx-path "font.png")))
+         (sf (make-sprite-font tex glyph-width: 4 glyph-height: 4 first-char: #\A columns: 4))
+         (lay (lambda args (receive (lines w h) (apply text-layout sf args) (list lines w h))))
+         (black '(0 0 0 255)))
+    (test "wrapped at the last space that fits 20 px; lines, width, height"
+          '((("AB CD" 0 0 20) ("EFG" 0 4 12)) 20 8)
+          (lay "AB CD EFG" width: 20))
+    (test "align: center places each line in the middle of the width"
+          '((("AB CD" 0 0 20) ("EFG" 4 4 12)) 20 8)
+          (lay "AB CD EFG" width: 20 align: 'center))
+    (test "centre is center" (lay "AB CD EFG" width: 20 align: 'center) (lay "AB CD EFG" width: 20 align: 'centre))
+    (test "align: right against the width's right edge"
+          '((("AB CD" 0 0 20) ("EFG" 8 4 12)) 20 8)
+          (lay "AB CD EFG" width: 20 align: 'right))
+    (test "a word wider than the width breaks between characters"
+          '((("ABC" 0 0 12) ("DEF" 0 4 12) ("G" 0 8 4)) 12 12)
+          (lay "ABCDEFG" width: 12))
+    (test "the spaces at a break are dropped"
+          '((("AB" 0 0 8) ("CD" 0 4 8)) 12 8)
+          (lay "AB   CD" width: 12))
+    (test "a newline always breaks; an empty line keeps its place"
+          '((("AB" 0 0 8) ("" 0 4 0) ("C" 0 8 4)) 8 12)
+          (lay "AB\n\nC"))
+    (test "without a width, lines align within the widest"
+          '((("ABCD" 0 0 16) ("AB" 8 4 8)) 16 8)
+          (lay "ABCD\nAB" align: 'right))
+    (test "a paragraph's leading spaces are kept"
+          '((("  AB" 0 0 16)) 100 4)
+          (lay "  AB" width: 100))
+    (test "scale: 2 doubles the glyphs and the line height"
+          '((("AB" 0 0 16) ("CD" 0 8 16)) 20 16)
+          (lay "AB CD" width: 20 scale: 2))
+    (test "the empty text has no lines" '(() 0 0) (lay ""))
+    (test-error "align: must be left, center or right" (text-layout sf "A" align: 'middle))
+    (test-error "width: must be a positive integer" (text-layout sf "A" width: 0))
+    ;; drawn: "AB" right-aligned in 20 px starts at 12, "C" at 16 below it
+    (tx-clear!)
+    (receive (w h) (draw-sprite-text! tx-renderer sf "AB\nC" 0 0 width: 20 align: 'right)
+      (test "draw-sprite-text! answers the layout's size" '(20 8) (list w h)))
+    (let ((px (tx-pixels)))
+      (test "the lines drawn where the layout puts them"
+            (list black (tx-glyph #\A) (tx-glyph #\B) black (tx-glyph #\C))
+            (list (px 11 0) (px 12 0) (px 19 3) (px 15 4) (px 16 4))))
+    (destroy-texture! tex)))
+
+(test-group "text: layout with a TrueType font"
+  (let* ((font (open-font tx-font-path 12))
+         (text "the quick brown fox jumps over the lazy dog")
+         (width 80))
+    (receive (lines w h) (text-layout font text width: width)
+      (test-assert "more than one line" (> (length lines) 1))
+      (test-assert "every line fits the width, and its width is its text's"
+                   (let ok ((ls lines))
+                     (or (null? ls)
+                         (and (<= (cadddr (car ls)) width)
+                              (= (cadddr (car ls)) (receive (tw th) (text-size font (caar ls)) tw))
+                              (ok (cdr ls))))))
+      (test "no word is lost or split" (string-split text " ")
+            (append-map* (lambda (l) (string-split (car l) " ")) lines))
+      (test "lines are a line skip apart" (map (lambda (i) (* i (font-line-skip font))) (iota* (length lines)))
+            (map caddr lines))
+      (test "w is the width given" width w)
+      (test "h: the font's height and a line skip per further line"
+            (+ (receive (tw th) (text-size font "x") th) (* (font-line-skip font) (- (length lines) 1)))
+            h))
+    (receive (lines w h) (text-layout font text width: width align: 'center)
+      (test "centred: each line's x is half the room left"
+            (map (lambda (l) (quotient (- width (cadddr l)) 2)) lines)
+            (map cadr lines)))
+    (test-error "scale: is for sprite fonts" (text-layout font "x" scale: 2))
+    ;; a centred title: the lit columns are as far from both edges
+    (tx-clear!)
+    (draw-text! tx-renderer font "HH" 0 0 width: tx-w align: 'center)
+    (let* ((px (tx-pixels))
+           (lit? (lambda (x) (let col ((y 0)) (and (< y tx-h) (or (> (car (px x y)) 100) (col (+ y 1)))))))
+           (left (let l ((x 0)) (if (or (= x tx-w) (lit? x)) x (l (+ x 1)))))
+           (right (let r ((x (- tx-w 1))) (if (or (< x 0) (lit? x)) x (r (- x 1))))))
+      (test-assert (sprintf "draw-text! align: center: ~a px left, ~a px right" left (- tx-w 1 right))
+                   (and (> left 20) (<= (abs (- left (- tx-w 1 right))) 2))))
+    (tx-clear!)
+    (draw-text! tx-renderer font "H\nH" 0 0)
+    (let ((px (tx-pixels)) (skip (font-line-skip font)))
+      (test-assert "a newline draws the next line a line skip below"
+                   (let row ((y skip) (found #f))
+                     (if (>= y (min tx-h (* 2 skip))) found
+                         (row (+ y 1) (or found (let col ((x 0)) (and (< x 12) (or (> (car (px x y)) 100) (col (+ x 1)))))))))))
+    (close-font! font)))
+
 (test-group "text: far away and bad coordinates"
   (let ((font (open-font tx-font-path 12))
         (lit (lambda () (let-values (((in out) (tx-count (tx-pixels) (lambda (p) (> (car p) 0)) 0 0 tx-w tx-h)))

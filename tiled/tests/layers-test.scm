@@ -5,7 +5,7 @@
 ;;; renderer on a surface. The PNGs and TMX maps are made here, in a
 ;;; temporary directory.
 
-(import scheme (chicken base) (chicken file) (chicken format) (chicken string)
+(import scheme (chicken base) (chicken file) (chicken format) (chicken string) (chicken condition)
         srfi-4 (downstroke test) (downstroke sdl2) (downstroke entity)
         (downstroke scene) (downstroke tilemap) (downstroke renderer)
         (downstroke prefabs) (downstroke engine) (only (downstroke animation) apply-animation))
@@ -454,6 +454,23 @@
     (test "layers: a list of names" '(door) (map entity-type es))
     (test "the layer's offset is added to the position" '(3 -2)
           (list (entity-ref (car es) #:x) (entity-ref (car es) #:y))))
+  (let ((message (lambda (thunk)
+                   (handle-exceptions e ((condition-property-accessor 'exn 'message "") e) (thunk) "no error"))))
+    (test-assert "layers: a name that is no object layer is an error naming the file and listing them"
+                 (let ((m (message (lambda () (tilemap-objects->entities (load-tilemap ly-objects-map)
+                                                                         layers: '("object"))))))
+                   (and (substring-index ly-objects-map m)
+                        (substring-index "no object layer named \"object\"; its object layers are (\"things\" \"other\")" m))))
+    (test-assert "a tile layer's name is said to hold no objects"
+                 (substring-index "\"ground\" (a layer of that name holds no objects)"
+                                  (message (lambda () (tilemap-objects->entities (load-tilemap ly-objects-map)
+                                                                                 layers: '("ground"))))))
+    (test-assert "game-load-scene!'s objects->entities: names the layer too"
+                 (substring-index "no object layer named \"thing\""
+                                  (message (lambda ()
+                                             (game-run! (make-game headless?: #t width: 16 height: 16
+                                                                   create: (lambda (g) (game-load-scene! g ly-objects-map objects->entities: '("thing"))))
+                                                        frames: 1 command-line: #f))))))
   (let ((es (tilemap-objects->entities (load-tilemap ly-objects-map)
                                        layers: (lambda (l) (not (layer-visible? l))))))
     (test "layers: a predicate" '(5) (map (lambda (e) (entity-ref e #:object-id)) es)))

@@ -61,6 +61,9 @@
                   (tilemap-flags-at tm 5 5 7))
       (test-error "a negative index" (tm-says? "no such layer" "-1")
                   (tilemap-cell-at tm 0 0 -1))
+      (test-error "the error lists the map's tile layers"
+                  (tm-says? "no such layer \"sky\"; its tile layers are (\"ground\" \"deco\" \"walls\")")
+                  (tilemap-layer tm "sky"))
       (test "a known layer outside the map is still 0" '(0 0 ())
             (list (tilemap-tile-at tm 2 0 "deco") (tilemap-cell-at tm -1 0 2)
                   (tilemap-flags-at tm 0 1 "walls")))))

@@ -6,7 +6,7 @@
 ;;; Expected values for Tiled's examples come from tools/tmx-expected.py
 ;;; (python's standard library only, never this loader), pasted below.
 
-(import scheme (chicken base) (chicken format) (chicken string) (chicken file)
+(import scheme (chicken base) (chicken format) (chicken string) (chicken file) (chicken condition) (chicken port)
         (chicken process) (chicken pathname) (chicken bitwise) srfi-4
         (only (downstroke util) find any iota)
         (downstroke test) (downstroke tilemap) (downstroke decode))
@@ -566,26 +566,45 @@
                 (load-tilemap p)))
   (test-error "not a string" (load-tilemap 'level1)))
 
-(test-group "only a bool false collides property opts a layer out"
+(test-group "only a bool false collides property opts a layer out; any other is named"
   (let* ((layer (lambda (id name prop cells)
                   (string-append
                    "<layer id=\"" id "\" name=\"" name "\" width=\"2\" height=\"2\"><properties>"
                    prop "</properties><data encoding=\"csv\">" cells "</data></layer>")))
-         (p (tmx-write "collides.tmx"
-                       (tmx-map "<data encoding=\"csv\">0,0,0,0</data>"
-                                extra: (string-append
-                                        (layer "2" "string" "<property name=\"collides\" value=\"false\"/>" "1,0,0,0")
-                                        (layer "3" "int" "<property name=\"collides\" type=\"int\" value=\"0\"/>" "0,1,0,0")
-                                        (layer "4" "bool" "<property name=\"collides\" type=\"bool\" value=\"false\"/>" "0,0,1,0")))))
-         (tm (load-tilemap p)))
-    (test "the property values" '("false" 0 #f)
-          (map (lambda (l) (property-ref (layer-properties l) "collides"))
-               (cdr (tilemap-layers tm))))
-    (test "layer-collides?: string \"false\" and int 0 still collide" '(#t #t #f)
-          (map layer-collides? (cdr (tilemap-layers tm))))
-    (test "solid cells" '(#t #t #f #f)
-          (list (tilemap-solid? tm 0 0) (tilemap-solid? tm 1 0)
-                (tilemap-solid? tm 0 1) (tilemap-solid? tm 1 1)))))
+         (map-with (lambda (file prop)
+                     (tmx-write file
+                                (tmx-map "<data encoding=\"csv\">0,0,0,0</data>"
+                                         extra: (string-append
+                                                 (layer "2" "deco" prop "1,0,0,0")
+                                                 (layer "3" "bool" "<property name=\"collides\" type=\"bool\" value=\"false\"/>" "0,0,1,0"))))))
+         (message (lambda (thunk)
+                    (handle-exceptions e ((condition-property-accessor 'exn 'message "") e) (thunk) "no error")))
+         (said (lambda (thunk)
+                 (call-with-output-string
+                  (lambda (port) (parameterize ((current-error-port port)) (thunk)))))))
+    (let ((tm (load-tilemap (map-with "collides-bool.tmx" "<property name=\"hp\" value=\"3\"/>"))))
+      (test "a bool false opts its layer out" '(#t #f #f #f)
+            (list (tilemap-solid? tm 0 0) (tilemap-solid? tm 1 0)
+                  (tilemap-solid? tm 0 1) (tilemap-solid? tm 1 1))))
+    (let ((p (map-with "collides-string.tmx" "<property name=\"collides\" value=\"false\"/>")))
+      (test-assert "collides without type=\"bool\" (a string): an error naming the file, the layer and the fix"
+                   (let ((m (message (lambda () (load-tilemap p)))))
+                     (and (substring-index p m) (substring-index "layer \"deco\"" m)
+                          (substring-index "collides is \"false\", of type string, not a bool" m)
+                          (substring-index "type=\"bool\"" m)))))
+    (let ((p (map-with "collides-int.tmx" "<property name=\"collides\" type=\"int\" value=\"0\"/>")))
+      (test-assert "an int collides is named too"
+                   (substring-index "of type int, not a bool" (message (lambda () (load-tilemap p))))))
+    (let ((p (map-with "colides.tmx" "<property name=\"colides\" type=\"bool\" value=\"false\"/>")))
+      (test "a misspelt collides: a warning naming the file, the layer and the right name; the map loads"
+            (string-append "downstroke: warning: " p ": layer \"deco\": property \"colides\" is not one Downstroke reads; did you mean \"collides\" (a bool)?\n")
+            (said (lambda () (load-tilemap p))))
+      (test "and its layer collides, as the property is not read" #t
+            (parameterize ((current-error-port (open-output-string)))
+              (tilemap-solid? (load-tilemap p) 0 0))))
+    (let ((p (map-with "one-wya.tmx" "<property name=\"one-wya\" type=\"bool\" value=\"true\"/>")))
+      (test-assert "one-way misspelt is said as well"
+                   (substring-index "did you mean \"one-way\"" (said (lambda () (load-tilemap p))))))))
 
 (test-group "tilesets without a map: load-tileset and make-sheet-tileset"
   (import (chicken condition))
