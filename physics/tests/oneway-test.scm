@@ -162,3 +162,73 @@
   (test "a moving one-way platform carries its rider" '(40 58 88)
         (let* ((es (run (list (platform #:vx 2) (body #:y 86)) 20)))
           (list (entity-ref (the 'platform es) #:x) (entity-ref (the 'body es) #:x) (entity-ref (the 'body es) #:y)))))
+
+;; docs/physics.org, "One-way platforms": a body with #:drop-through? is
+;; not held by a one-way lift either, and a landing is judged from where
+;; the body was when the frame began (its #:frame-start), whatever moved
+;; it since: its velocity, a push, or nothing.
+(test-group "one-way entities: dropping through a lift, and where the frame began"
+  (define (ledge . more)
+    (apply ow-ent #:type 'ledge #:x 0 #:y 100 #:width 48 #:height 8
+           #:solid? #t #:immovable? #t #:one-way? #t more))
+  (define (the type es) (let loop ((es es)) (if (eq? (entity-ref (car es) #:type) type) (car es) (loop (cdr es)))))
+  ;; each frame's (y vy) of the entity of that type
+  (define (frames es type n)
+    (let loop ((s (make-scene entities: es)) (k 0) (out '()))
+      (if (= k n)
+          (reverse out)
+          (let ((s (engine-pipeline s 16)))
+            (loop s (+ k 1) (cons (let ((e (the type (scene-entities s))))
+                                    (list (entity-ref e #:y) (entity-ref e #:vy)))
+                                  out))))))
+  (test "a drop-through rider falls through a lift going down (it is not carried)"
+        '((89 1) (91 2) (94 3))
+        (frames (list (ledge #:vy 3)
+                      (ow-ent #:type 'rider #:x 10 #:y 88 #:width 12 #:height 12
+                              #:gravity? #t #:solid? #t #:drop-through? #t))
+                'rider 3))
+  (test "without #:drop-through? the lift carries it down" '((91 0) (94 0) (97 0))
+        (frames (list (ledge #:vy 3)
+                      (ow-ent #:type 'rider #:x 10 #:y 88 #:width 12 #:height 12 #:gravity? #t #:solid? #t))
+                'rider 3))
+  (test "a body pushed into the ledge from above lands on it (its bottom was at 98)"
+        '((94 0) (94 0))
+        (frames (list (ow-ent #:type 'a #:x 10 #:y 80 #:width 12 #:height 16 #:solid? #t)
+                      (ow-ent #:type 'b #:x 10 #:y 92 #:width 12 #:height 6 #:vy 3 #:solid? #t)
+                      (ledge))
+                'b 2))
+  (test "a body that did not move, sunk into the ledge, stays where it is" '((95 10))
+        (frames (list (ow-ent #:type 'b #:x 10 #:y 95 #:width 12 #:height 12 #:vy 10 #:solid? #t
+                              #:skip-pipelines '(velocity-y))
+                      (ledge))
+                'b 1))
+  (test "a body that came from below the top is not lifted onto it" '((97 4))
+        (frames (list (ow-ent #:type 'b #:x 10 #:y 93 #:width 12 #:height 12 #:vy 4 #:solid? #t)
+                      (ledge))
+                'b 1))
+  (test "#:frame-start is written on solid bodies only in a scene with a one-way entity" '((10 . 92) #f)
+        (list (entity-ref (the 'b (scene-entities
+                                   (engine-pipeline
+                                    (make-scene entities: (list (ow-ent #:type 'b #:x 10 #:y 92 #:width 12 #:height 6
+                                                                        #:vy 3 #:solid? #t)
+                                                                (ledge)))
+                                    16)))
+                          #:frame-start)
+              (entity-ref (the 'b (scene-entities
+                                   (engine-pipeline
+                                    (make-scene entities: (list (ow-ent #:type 'b #:x 10 #:y 92 #:width 12 #:height 6
+                                                                        #:vy 3 #:solid? #t)
+                                                                (ow-ent #:type 'ledge #:x 0 #:y 100 #:width 48 #:height 8
+                                                                        #:solid? #t #:immovable? #t)))
+                                    16)))
+                          #:frame-start)))
+  (test "the readable steps say the same" '((94 0) (94 0))
+        (let loop ((s (make-scene entities: (list (ow-ent #:type 'a #:x 10 #:y 80 #:width 12 #:height 16 #:solid? #t)
+                                                  (ow-ent #:type 'b #:x 10 #:y 92 #:width 12 #:height 6 #:vy 3 #:solid? #t)
+                                                  (ledge))))
+                   (k 0) (out '()))
+          (if (= k 2)
+              (reverse out)
+              (let ((s (contract-pipeline s 16)))
+                (loop s (+ k 1) (cons (let ((e (the 'b (scene-entities s)))) (list (entity-ref e #:y) (entity-ref e #:vy)))
+                                      out)))))))
