@@ -11,7 +11,7 @@ static const C_word ds_need_of_key[DS_NEED_KEYS] = {
   [DS_KEY_TWEEN] = DS_NEED_TWEENS, [DS_KEY_GRAVITY] = DS_NEED_GROUND,
   [DS_KEY_SOLID] = 0, [DS_KEY_GROUP_ID] = DS_NEED_GROUPS,
   [DS_KEY_ANIMATIONS] = DS_NEED_ANIMATION, [DS_KEY_IMMOVABLE] = DS_NEED_START,
-  [DS_KEY_EMITTER] = DS_NEED_PARTICLES
+  [DS_KEY_EMITTER] = DS_NEED_PARTICLES, [DS_KEY_ONE_WAY] = DS_NEED_START
 };
 
 static C_word ds_pipeline_needs(C_word entities, C_word keys) {

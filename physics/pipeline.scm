@@ -57,7 +57,7 @@
   (define-c-constant need-groups DS_NEED_GROUPS 8)         ; an entity has a #:group-id
   (define-c-constant need-animation DS_NEED_ANIMATION 16)  ; an entity has #:animations
   (define-c-constant need-support DS_NEED_SUPPORT 32)      ; an entity has #:solid? (it may hold others up)
-  (define-c-constant need-start DS_NEED_START 64)          ; an entity has #:immovable? (a platform may carry)
+  (define-c-constant need-start DS_NEED_START 64)          ; an entity has #:immovable? or #:one-way? (record-frame-start)
   (define-c-constant need-particles DS_NEED_PARTICLES 128) ; an entity has an #:emitter
   (define-c-constant key-tween DS_KEY_TWEEN 0)
   (define-c-constant key-gravity DS_KEY_GRAVITY 1)
@@ -66,12 +66,14 @@
   (define-c-constant key-animations DS_KEY_ANIMATIONS 4)
   (define-c-constant key-immovable DS_KEY_IMMOVABLE 5)
   (define-c-constant key-emitter DS_KEY_EMITTER 6)
-  (define-c-constant need-key-count DS_NEED_KEYS 7)
+  (define-c-constant key-one-way DS_KEY_ONE_WAY 7)
+  (define-c-constant need-key-count DS_NEED_KEYS 8)
   (define need-keys
     (let ((v (make-vector need-key-count)))
       (for-each (lambda (i k) (vector-set! v i k))
-                (list key-tween key-gravity key-solid key-group-id key-animations key-immovable key-emitter)
-                (list #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter))
+                (list key-tween key-gravity key-solid key-group-id key-animations key-immovable key-emitter
+                      key-one-way)
+                (list #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter #:one-way?))
       v))
 
   ;; The walk below, in C (needs.c): it reads every pair of every entity
@@ -101,7 +103,7 @@
                         ((eq? k #:tween) (walk (cdr ps) (fxior bits need-tweens) solid?))
                         ((eq? k #:group-id) (walk (cdr ps) (fxior bits need-groups) solid?))
                         ((eq? k #:animations) (walk (cdr ps) (fxior bits need-animation) solid?))
-                        ((eq? k #:immovable?) (walk (cdr ps) (fxior bits need-start) solid?))
+                        ((or (eq? k #:immovable?) (eq? k #:one-way?)) (walk (cdr ps) (fxior bits need-start) solid?))
                         ((eq? k #:emitter) (walk (cdr ps) (fxior bits need-particles) solid?))
                         (else (walk (cdr ps) bits solid?)))))))))
 
@@ -121,7 +123,8 @@
            (tweens? (needs? before need-tweens))
            (ground-in-motion? (ground-joins-motion? before))
            (move (motion-pass scene dt ground-in-motion?))
-           ;; where platforms start, when one may carry a rider this frame
+           ;; where platforms start, when one may carry a rider this frame,
+           ;; and where solid bodies start, when one may land on a one-way one
            (starts? (needs? before need-start))
            (scene (scene-map-entities scene (cond ((and tweens? starts?)
                                                    (lambda (s e) (move (step-tweens s (record-frame-start s e dt) dt))))

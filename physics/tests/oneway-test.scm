@@ -5,7 +5,7 @@
 
 (import scheme (chicken base) (chicken format) (chicken file) (chicken io)
         (downstroke test) (downstroke entity) (downstroke scene) (downstroke tilemap)
-        (downstroke pipeline))
+        (downstroke pipeline) (only (downstroke physics) detect-on-solid))
 
 (define (ow-ent . plist) (plist->entity plist))
 
@@ -232,3 +232,28 @@
               (let ((s (contract-pipeline s 16)))
                 (loop s (+ k 1) (cons (let ((e (the 'b (scene-entities s)))) (list (entity-ref e #:y) (entity-ref e #:vy)))
                                       out)))))))
+
+;; docs/physics.org, "Standing on things" and "One-way platforms": the
+;; readings settled there.
+(test-group "one-way: ground and landing, precisely"
+  (define ledge (ow-ent #:type 'ledge #:x 0 #:y 100 #:width 48 #:height 8
+                        #:solid? #t #:immovable? #t #:one-way? #t))
+  (define (grounded? body . more)
+    (entity-ref (detect-on-solid (make-scene tilemap: (and (pair? more) (car more)) entities: (list ledge body))
+                                 body 16)
+                #:on-ground?))
+  (define (feet y vy) (ow-ent #:type 'b #:x 10 #:y y #:width 12 #:height 12 #:vy vy #:gravity? #t #:solid? #t))
+  (test "a one-way entity: a body 2 px above it, not rising, is on the ground" #t (grounded? (feet 86 0)))
+  (test "a one-way entity: the same body rising is not" #f (grounded? (feet 86 -1)))
+  (test "a one-way entity: a rider 5 px inside it, not rising, is on the ground" #t (grounded? (feet 93 0)))
+  (test "a one-way tile: a body on its top, rising, is on the ground (tiles ask no velocity)" #t
+        (entity-ref (detect-on-solid (make-scene tilemap: ow-map entities: '())
+                                     (ow-ent #:x 40 #:y 52 #:width 12 #:height 12 #:vy -1 #:gravity? #t) 16)
+                    #:on-ground?))
+  (test "landing puts the bottom on the top: y is exactly top - height, vy 0" '(88 0)
+        (let ((b (car (scene-entities
+                       (engine-pipeline (make-scene entities: (list (ow-ent #:type 'b #:x 10 #:y 87.3 #:width 12 #:height 12
+                                                                            #:vy 2.9 #:solid? #t)
+                                                                    ledge))
+                                        16)))))
+          (list (entity-ref b #:y) (entity-ref b #:vy)))))
