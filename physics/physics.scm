@@ -22,14 +22,14 @@
   (import (chicken module) (downstroke tuning) (downstroke tile-grid) (downstroke escape)
           (downstroke tile-collisions) (downstroke contacts) (downstroke motion)
           (downstroke groups))
-  ;; without the names after ";; for sibling modules only" in tile-grid.scm's
-  ;; and tile-collisions.scm's export lists (tests/layout-test.scm checks
+  ;; without the names after ";; for sibling modules only" in tile-grid.scm's,
+  ;; escape.scm's and tile-collisions.scm's export lists (tests/layout-test.scm checks
   ;; that games do not see them)
   (reexport (downstroke tuning)
             (except (downstroke tile-grid)
-                    ->integer cell-of span-first span-last nearest-solid-line grids
+                    ->integer cell-of cell-ceiling span-first span-last nearest-solid-line grids
                     column-grid row-grid pass-map one-way-map?)
-            (downstroke escape)
+            (except (downstroke escape) escape-place)
             (except (downstroke tile-collisions)
                     swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground?)
             (downstroke contacts) (downstroke motion) (downstroke groups)))
