@@ -27,7 +27,7 @@
   (define known-entity-keys
     '(#:type #:id #:name #:tags #:x #:y #:width #:height #:vx #:vy #:ay
       #:gravity? #:on-ground? #:solid? #:immovable? #:one-way? #:drop-through?
-      #:frame-start #:skip-pipelines #:collision-mode #:tween
+      #:frame-start #:skip-pipelines #:collision-mode #:tween #:contacts? #:contacts
       #:group-id #:group-origin? #:group-local-x #:group-local-y
       #:animations #:anim-name #:anim-frame #:anim-tick #:anim-duration #:anim-finished?
       #:tile-id #:color #:facing
@@ -37,7 +37,7 @@
 
   (define pipeline-steps
     '(tweens frame-start acceleration gravity velocity-x tile-collisions-x velocity-y
-      tile-collisions-y on-solid entity-collisions animation particles))
+      tile-collisions-y on-solid entity-collisions contacts animation particles))
 
   (define number-keys '(#:x #:y #:width #:height #:vx #:vy #:ay
                         #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y

@@ -483,7 +483,7 @@
   ;; when there are none. A property of the table of another type, or a
   ;; name that looks like one of the table's, is an error naming the file,
   ;; the tileset, the tile and the property.
-  (define (tile-rules tilesets extra-one-way map-source)
+  (define (tile-rules tilesets extra-one-way extra-kinds map-source)
     (let ((table (make-hash-table)) (any? #f))
       (for-each
        (lambda (ts)
@@ -520,6 +520,14 @@
                   (let ((old (hash-table-ref/default table g #f)))
                     (hash-table-set! table g (vector (and old (vector-ref old 0)) #t (and old (vector-ref old 2))))))
                 extra-one-way)
+      (for-each (lambda (p)
+                  (unless (and (pair? p) (exact-integer? (car p)) (symbol? (cdr p)))
+                    (error 'make-tilemap "kinds: must be a list of (tile-id . symbol)" p))
+                  (set! any? #t)
+                  (let ((old (hash-table-ref/default table (car p) #f)))
+                    (hash-table-set! table (car p) (vector (and old (vector-ref old 0)) (and old (vector-ref old 1))
+                                                           (cdr p)))))
+                extra-kinds)
       (and any? table)))
 
   ;; The solid grid: 0 empty, 1 solid, 2 one-way. A non-zero gid of a
@@ -582,7 +590,7 @@
 
   (define (make-tilemap width height tile-width tile-height layers
                         #!key (properties '()) (origin-col 0) (origin-row 0)
-                        (info '()) (tilesets '()) (layer-tree layers) (one-way '()))
+                        (info '()) (tilesets '()) (layer-tree layers) (one-way '()) (kinds '()))
     (for-each
      (lambda (layer)
        (unless (and (eq? (layer-kind layer) 'tile)
@@ -596,15 +604,16 @@
                  (fixnum? tile-height) (fx> tile-height 0))
       (error 'make-tilemap "tile size must be positive integers" tile-width tile-height))
     (let* ((source (let ((p (assq 'source info))) (and p (cdr p))))
-           (rules (tile-rules tilesets one-way source)))
+           (rules (tile-rules tilesets one-way kinds source)))
       (%make-tilemap width height tile-width tile-height layers properties
                      (solid-grid width height layers rules) origin-col origin-row
                      info tilesets layer-tree (kind-grid width height layers rules source))))
 
   ;; A one-layer map from rows of tile ids: procedural levels, tests, the REPL.
-  ;; one-way: the tile ids that are one-way platforms.
+  ;; one-way: the tile ids that are one-way platforms; kinds: an alist
+  ;; (tile-id . kind) of the tiles' kinds (as the `kind` tile property).
   (define/keywords (list->tilemap rows #!key (tile-width 16) (tile-height 16) (name "tiles")
-                                  (one-way '()))
+                                  (one-way '()) (kinds '()))
     (let* ((height (length rows))
            (width (if (null? rows) 0 (length (car rows))))
            (data (make-u32vector (* width height) 0)))
@@ -623,7 +632,7 @@
           (loop (cdr rows) (+ j 1))))
       (make-tilemap width height tile-width tile-height
                     (list (make-layer name width height data))
-                    one-way: one-way)))
+                    one-way: one-way kinds: kinds)))
 
   ;;; ------------------------------------------------------------------
   ;;; Where Tiled draws things, for every orientation (the renderer and the

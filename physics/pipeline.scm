@@ -39,6 +39,7 @@
       (scene-map-entities _ (cut detect-on-solid           <> <> dt))
       (scene-transform-entities _ resolve-entity-collisions)
       (scene-transform-entities _ sync-groups)
+      (scene-map-entities _ (cut detect-contacts           <> <> dt))
       (scene-map-entities _ (cut apply-animation           <> <> dt))
       (scene-map-entities _ (cut step-particles            <> <> dt))))
 
@@ -59,6 +60,7 @@
   (define-c-constant need-support DS_NEED_SUPPORT 32)      ; an entity has #:solid? (it may hold others up)
   (define-c-constant need-start DS_NEED_START 64)          ; an entity has #:immovable? or #:one-way? (record-frame-start)
   (define-c-constant need-particles DS_NEED_PARTICLES 128) ; an entity has an #:emitter
+  (define-c-constant need-contacts DS_NEED_CONTACTS 256)   ; an entity has #:contacts?
   (define-c-constant key-tween DS_KEY_TWEEN 0)
   (define-c-constant key-gravity DS_KEY_GRAVITY 1)
   (define-c-constant key-solid DS_KEY_SOLID 2)
@@ -67,13 +69,15 @@
   (define-c-constant key-immovable DS_KEY_IMMOVABLE 5)
   (define-c-constant key-emitter DS_KEY_EMITTER 6)
   (define-c-constant key-one-way DS_KEY_ONE_WAY 7)
-  (define-c-constant need-key-count DS_NEED_KEYS 8)
+  (define-c-constant key-contacts DS_KEY_CONTACTS 8)
+  (define-c-constant need-key-count DS_NEED_KEYS 9)
   (define need-keys
     (let ((v (make-vector need-key-count)))
       (for-each (lambda (i k) (vector-set! v i k))
                 (list key-tween key-gravity key-solid key-group-id key-animations key-immovable key-emitter
-                      key-one-way)
-                (list #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter #:one-way?))
+                      key-one-way key-contacts)
+                (list #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter #:one-way?
+                      #:contacts?))
       v))
 
   ;; The walk below, in C (needs.c): it reads every pair of every entity
@@ -105,6 +109,7 @@
                         ((eq? k #:animations) (walk (cdr ps) (fxior bits need-animation) solid?))
                         ((or (eq? k #:immovable?) (eq? k #:one-way?)) (walk (cdr ps) (fxior bits need-start) solid?))
                         ((eq? k #:emitter) (walk (cdr ps) (fxior bits need-particles) solid?))
+                        ((eq? k #:contacts?) (walk (cdr ps) (fxior bits need-contacts) solid?))
                         (else (walk (cdr ps) bits solid?)))))))))
 
   (define (needs? bits need) (not (fx= 0 (fxand bits need))))
@@ -141,6 +146,8 @@
              (ground-pass _)
              (when-needed need-pairs (cut scene-transform-entities <> resolve-entity-collisions) _)
              (when-needed need-groups (cut scene-transform-entities <> sync-groups) _)
+             (when-needed need-contacts
+                          (cut scene-map-entities <> (lambda (s e) (detect-contacts s e dt))) _)
              (when-needed need-animation
                           (cut scene-map-entities <> (lambda (s e) (apply-animation s e dt))) _)
              (when-needed need-particles

@@ -68,6 +68,7 @@
                 (and (pl-chance 10)
                      (cons #:animations
                            (list (list (cons #:name 'walk) (cons #:frames '(1 2 3)) (cons #:duration 2)))))
+                (and (pl-chance 10) (cons #:contacts? #t))
                 (cons #:id k)))
          (present (let loop ((ps pairs) (out '()))
                     (cond ((null? ps) out)
@@ -256,6 +257,7 @@
          (scene ((each detect-on-solid) scene))
          (scene (scene-transform-entities scene resolve-entity-collisions))
          (scene (scene-transform-entities scene sync-groups))
+         (scene ((each detect-contacts) scene))
          (scene ((each apply-animation) scene)))
     ((each step-particles) scene)))
 
