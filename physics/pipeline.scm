@@ -32,6 +32,7 @@
       (scene-map-entities _ (cut step-tweens               <> <> dt))
       (scene-map-entities _ (cut apply-acceleration        <> <> dt))
       (scene-map-entities _ (cut apply-gravity             <> <> dt))
+      (scene-map-entities _ (cut apply-body-controls       <> <> dt))
       (scene-map-entities _ (cut apply-velocity-x          <> <> dt))
       (scene-map-entities _ (cut resolve-tile-collisions-x <> <> dt))
       (scene-map-entities _ (cut apply-velocity-y          <> <> dt))
@@ -61,6 +62,7 @@
   (define-c-constant need-start DS_NEED_START 64)          ; an entity has #:immovable? or #:one-way? (record-frame-start)
   (define-c-constant need-particles DS_NEED_PARTICLES 128) ; an entity has an #:emitter
   (define-c-constant need-contacts DS_NEED_CONTACTS 256)   ; an entity has #:contacts?
+  (define-c-constant need-controls DS_NEED_CONTROLS 512)   ; an entity has a body control
   (define-c-constant key-tween DS_KEY_TWEEN 0)
   (define-c-constant key-gravity DS_KEY_GRAVITY 1)
   (define-c-constant key-solid DS_KEY_SOLID 2)
@@ -70,14 +72,19 @@
   (define-c-constant key-emitter DS_KEY_EMITTER 6)
   (define-c-constant key-one-way DS_KEY_ONE_WAY 7)
   (define-c-constant key-contacts DS_KEY_CONTACTS 8)
-  (define-c-constant need-key-count DS_NEED_KEYS 9)
+  (define-c-constant key-drag DS_KEY_DRAG 9)
+  (define-c-constant key-air-drag DS_KEY_AIR_DRAG 10)
+  (define-c-constant key-max-vx DS_KEY_MAX_VX 11)
+  (define-c-constant key-max-vy DS_KEY_MAX_VY 12)
+  (define-c-constant key-bounce DS_KEY_BOUNCE 13)
+  (define-c-constant need-key-count DS_NEED_KEYS 14)
   (define need-keys
     (let ((v (make-vector need-key-count)))
       (for-each (lambda (i k) (vector-set! v i k))
                 (list key-tween key-gravity key-solid key-group-id key-animations key-immovable key-emitter
-                      key-one-way key-contacts)
+                      key-one-way key-contacts key-drag key-air-drag key-max-vx key-max-vy key-bounce)
                 (list #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter #:one-way?
-                      #:contacts?))
+                      #:contacts? #:drag #:air-drag #:max-vx #:max-vy #:bounce))
       v))
 
   ;; The walk below, in C (needs.c): it reads every pair of every entity
@@ -110,6 +117,8 @@
                         ((or (eq? k #:immovable?) (eq? k #:one-way?)) (walk (cdr ps) (fxior bits need-start) solid?))
                         ((eq? k #:emitter) (walk (cdr ps) (fxior bits need-particles) solid?))
                         ((eq? k #:contacts?) (walk (cdr ps) (fxior bits need-contacts) solid?))
+                        ((memq k '(#:drag #:air-drag #:max-vx #:max-vy #:bounce))
+                         (walk (cdr ps) (fxior bits need-controls) solid?))
                         (else (walk (cdr ps) bits solid?)))))))))
 
   (define (needs? bits need) (not (fx= 0 (fxand bits need))))
@@ -127,7 +136,9 @@
     (let* ((before (pipeline-needs (scene-entities scene)))
            (tweens? (needs? before need-tweens))
            (ground-in-motion? (ground-joins-motion? before))
-           (move (motion-pass scene dt ground-in-motion?))
+           ;; a tween's on-complete may add a body control: then every
+           ;; entity is asked
+           (move (motion-pass scene dt ground-in-motion? (or tweens? (needs? before need-controls))))
            ;; where platforms start, when one may carry a rider this frame,
            ;; and where solid bodies start, when one may land on a one-way one
            (starts? (needs? before need-start))

@@ -101,8 +101,18 @@
                                  (and (eq? pos-key #:y) (> v 0) (not (entity-ref entity #:drop-through? #f)))
                                  tile tile-across grid)))
             (if stop
-                (entity-set* entity pos-key stop vel-key 0)
+                (entity-set* entity pos-key stop vel-key (rebound entity v))
                 entity)))))
+
+  ;; The velocity a body leaves a tile with on the axis it hit it: 0, or
+  ;; with #:bounce b, -v * b (docs/physics.org, "Body controls"). A body
+  ;; that hits at 1 px/frame or less stops, so one resting on a floor
+  ;; under gravity settles.
+  (define (rebound entity v)
+    (let ((b (assq #:bounce entity)))
+      (if (and b (> (abs v) 1))
+          (- (* v (num entity #:bounce)))
+          0)))
 
   ;; Swept mode, before a body's first tile pass of the frame: a body that
   ;; starts the frame inside solid tiles (an entity push can leave it
