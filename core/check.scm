@@ -29,7 +29,8 @@
   (define known-entity-keys
     '(#:type #:id #:name #:tags #:x #:y #:width #:height #:vx #:vy #:ay
       #:gravity? #:on-ground? #:solid? #:immovable? #:one-way? #:drop-through?
-      #:frame-start #:skip-pipelines #:collision-mode #:tween
+      #:frame-start #:skip-pipelines #:collision-mode #:tween #:contacts? #:contacts
+      #:drag #:air-drag #:max-vx #:max-vy #:bounce
       #:group-id #:group-origin? #:group-local-x #:group-local-y
       #:animations #:anim-name #:anim-frame #:anim-tick #:anim-duration #:anim-finished? #:anim-event
       #:tile-id #:color #:facing
@@ -38,12 +39,13 @@
       #:angle #:scale #:scale-x #:scale-y #:alpha #:tint #:tileset #:z #:emitter))
 
   (define pipeline-steps
-    '(tweens frame-start acceleration gravity velocity-x tile-collisions-x velocity-y
-      tile-collisions-y on-solid entity-collisions animation particles))
+    '(tweens frame-start acceleration gravity controls velocity-x tile-collisions-x velocity-y
+      tile-collisions-y on-solid entity-collisions contacts animation particles))
 
   (define number-keys '(#:x #:y #:width #:height #:vx #:vy #:ay
                         #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y
-                        #:angle #:scale #:scale-x #:scale-y #:alpha #:z))
+                        #:angle #:scale #:scale-x #:scale-y #:alpha #:z
+                        #:drag #:air-drag #:max-vx #:max-vy #:bounce))
 
   (define (kw k) (sprintf "~s" k))
 

@@ -17,7 +17,10 @@
 ;;; and only one falling onto it) when its tile has the bool property
 ;;; `one-way` set in its tileset, or its layer has the layer property
 ;;; `one-way` set; a solid tile of any other layer in the same cell wins.
-;;; The grid holds 0 (empty), 1 (solid) or 2 (one-way).
+;;; A tile whose tileset gives it the bool property `collides` false adds
+;;; nothing to the grid (tile-property-table lists the names read on tiles).
+;;; The grid holds 0 (empty), 1 (solid) or 2 (one-way). A second grid, made
+;;; only when some tile has a `kind`, holds each cell's kind (tilemap-kind).
 ;;;
 ;;; Which layers collide: every tile layer, unless the layer has the property
 ;;; `collides` set to #f (a bool property; the string "false" or the int 0
@@ -59,6 +62,7 @@
    tilemap-screen-size tilemap-cell-anchor tilemap-screen-point
    tilemap-layers tilemap-layer tilemap-properties
    tilemap-tile-at tilemap-cell-at tilemap-flags-at tilemap-solid? tilemap-one-way? tilemap-solid-grid
+   tilemap-kind tile-property-table
    ;; map attributes
    tilemap-source tilemap-version tilemap-tiled-version tilemap-class
    tilemap-orientation tilemap-render-order tilemap-infinite?
@@ -107,7 +111,7 @@
           (chicken string) (chicken file) (only (chicken file posix) regular-file?) srfi-4
           (only (downstroke util) filter filter-map append-map any list-min list-max string-concatenate
                 make-hash-table hash-table-ref/default hash-table-set!
-                hash-table-exists?))
+                hash-table-exists? hash-table-fold))
 
   ;;; ------------------------------------------------------------------
   ;;; Cells: a gid and four flag bits.
@@ -273,7 +277,7 @@
 
   (define-record-type tilemap
     (%make-tilemap width height tile-width tile-height layers properties solid
-                   origin-col origin-row info tilesets layer-tree)
+                   origin-col origin-row info tilesets layer-tree kinds)
     tilemap?
     (width tilemap-width)
     (height tilemap-height)
@@ -286,7 +290,8 @@
     (origin-row tilemap-origin-row)
     (info tilemap-info)                 ; alist of the map's attributes
     (tilesets tilemap-tilesets)
-    (layer-tree tilemap-layer-tree))    ; every layer, as nested in Tiled
+    (layer-tree tilemap-layer-tree)     ; every layer, as nested in Tiled
+    (kinds tilemap-kinds))              ; #f, or (u8vector grid . vector of kind symbols)
 
   (define (info-ref tm key default)
     (let ((p (assq key (tilemap-info tm)))) (if p (cdr p) default)))
@@ -349,7 +354,7 @@
                      (tilemap-tile-width tm) (tilemap-tile-height tm)
                      layers (tilemap-properties tm) (tilemap-solid-grid tm)
                      (tilemap-origin-col tm) (tilemap-origin-row tm)
-                     (tilemap-info tm) (tilemap-tilesets tm) tree)))
+                     (tilemap-info tm) (tilemap-tilesets tm) tree (tilemap-kinds tm))))
 
   ;; Where a tile object's image hangs from its (x, y): the fractions of
   ;; its width and height left of and above that point, (values ax ay).
@@ -424,46 +429,168 @@
     (let ((ts (tilemap-tileset-for tm gid)))
       (and ts (tileset-tile ts (- (cell-gid gid) (tileset-first-gid ts))))))
 
-  ;; The gids of the tilesets' tiles marked one-way, plus `extra`, as a
-  ;; table (#f when there are none).
-  (define (one-way-gids tilesets extra)
-    (let ((gids (append extra
-                        (append-map (lambda (ts)
-                                      (filter-map (lambda (t)
-                                                    (and (eq? #t (property-ref (tile-properties t) "one-way" #f))
-                                                         (+ (tileset-first-gid ts) (tile-id t))))
-                                                  (tileset-tiles ts)))
-                                    tilesets))))
-      (and (pair? gids)
-           (let ((table (make-hash-table)))
-             (for-each (lambda (g) (hash-table-set! table g #t)) gids)
-             table))))
+  ;;; Tile properties (docs/tilemaps.org, "Tile properties"): the names
+  ;;; Downstroke reads on a tile of a tileset, and their Tiled types. A
+  ;;; tile with none of them is what its layer makes it (solid on a
+  ;;; colliding layer).
+  (define tile-property-table
+    '(("collides" . bool)       ; #f: never solid, whatever its layer
+      ("one-way" . bool)        ; a jump-through platform
+      ("kind" . string)))       ; what the cell is, for the game (tilemap-kind)
 
-  (define (solid-grid width height layers tilesets extra-one-way)
+  ;; A name folded for comparison: lower case, without '-', '_' or spaces.
+  (define (fold-name name)
+    (list->string (filter-map (lambda (c) (and (not (memv c '(#\- #\_ #\space))) (char-downcase c)))
+                              (string->list name))))
+
+  ;; Whether a and b differ by one edit: a character added, dropped,
+  ;; replaced, or two neighbours swapped.
+  (define (one-edit-apart? a b)
+    (let ((la (string-length a)) (lb (string-length b)))
+      (define (same-from? i j) (string=? (substring a i la) (substring b j lb)))
+      (let loop ((i 0))
+        (cond ((and (fx= i la) (fx= i lb)) #f)
+              ((or (fx= i la) (fx= i lb)) (fx= 1 (abs (fx- la lb))))
+              ((char=? (string-ref a i) (string-ref b i)) (loop (fx+ i 1)))
+              (else (or (and (fx= la lb) (same-from? (fx+ i 1) (fx+ i 1)))
+                        (and (fx= la (fx+ lb 1)) (same-from? (fx+ i 1) i))
+                        (and (fx= lb (fx+ la 1)) (same-from? i (fx+ i 1)))
+                        (and (fx= la lb) (fx< (fx+ i 1) la)
+                             (char=? (string-ref a i) (string-ref b (fx+ i 1)))
+                             (char=? (string-ref a (fx+ i 1)) (string-ref b i))
+                             (same-from? (fx+ i 2) (fx+ i 2)))))))))
+
+  ;; The table's name that `name` looks like a misspelling of, or #f: the
+  ;; same once folded, or (for names of five letters or more) one edit
+  ;; away.
+  (define (misspelt-tile-property name)
+    (and (not (assoc name tile-property-table))
+         (let loop ((t tile-property-table))
+           (and (pair? t)
+                (let ((known (caar t)))
+                  (if (or (string=? (fold-name name) (fold-name known))
+                          (and (fx>= (string-length known) 5) (one-edit-apart? name known)))
+                      known
+                      (loop (cdr t))))))))
+
+  ;; Where a tileset was read from, for errors: its .tsx, else the map.
+  (define (tileset-origin ts map-source)
+    (or (tileset-source ts) map-source "a map made in code"))
+
+  ;; What the tilesets' tiles say, checked: a table gid -> #(collides one-way
+  ;; kind) (each #f when the tile does not set it, kind a symbol) for the
+  ;; tiles that set any, plus each gid of `extra-one-way` as one-way; #f
+  ;; when there are none. A property of the table of another type, or a
+  ;; name that looks like one of the table's, is an error naming the file,
+  ;; the tileset, the tile and the property.
+  (define (tile-rules tilesets extra-one-way extra-kinds map-source)
+    (let ((table (make-hash-table)) (any? #f))
+      (for-each
+       (lambda (ts)
+         (for-each
+          (lambda (t)
+            (let* ((props (tile-properties t))
+                   (where (lambda () (sprintf "~a: tileset ~s, tile ~a" (tileset-origin ts map-source)
+                                              (tileset-name ts) (tile-id t)))))
+              (for-each
+               (lambda (p)
+                 (let ((known (assoc (car p) tile-property-table))
+                       (like (and (string? (car p)) (misspelt-tile-property (car p)))))
+                   (cond (like
+                          (error 'load-tilemap
+                                 (sprintf "~a: property ~s is not one of Downstroke's tile properties; did you mean ~s?"
+                                          (where) (car p) like)))
+                         ((and known (not (eq? (property-type (cdr p)) (cdr known))))
+                          (error 'load-tilemap
+                                 (sprintf "~a: property ~s must be of type ~a, not ~a (~s)"
+                                          (where) (car p) (cdr known) (property-type (cdr p)) (cdr p)))))))
+               props)
+              (let ((collides (assoc "collides" props)) (one-way (assoc "one-way" props))
+                    (kind (assoc "kind" props)))
+                (when (or collides one-way kind)
+                  (set! any? #t)
+                  (hash-table-set! table (+ (tileset-first-gid ts) (tile-id t))
+                                   (vector (and collides (if (cdr collides) 'yes 'no))
+                                           (and one-way (cdr one-way))
+                                           (and kind (string->symbol (cdr kind)))))))))
+          (tileset-tiles ts)))
+       tilesets)
+      (for-each (lambda (g)
+                  (set! any? #t)
+                  (let ((old (hash-table-ref/default table g #f)))
+                    (hash-table-set! table g (vector (and old (vector-ref old 0)) #t (and old (vector-ref old 2))))))
+                extra-one-way)
+      (for-each (lambda (p)
+                  (unless (and (pair? p) (exact-integer? (car p)) (symbol? (cdr p)))
+                    (error 'make-tilemap "kinds: must be a list of (tile-id . symbol)" p))
+                  (set! any? #t)
+                  (let ((old (hash-table-ref/default table (car p) #f)))
+                    (hash-table-set! table (car p) (vector (and old (vector-ref old 0)) (and old (vector-ref old 1))
+                                                           (cdr p)))))
+                extra-kinds)
+      (and any? table)))
+
+  ;; The solid grid: 0 empty, 1 solid, 2 one-way. A non-zero gid of a
+  ;; colliding layer is solid, unless its tile says collides false (then
+  ;; it adds nothing) or one-way (2, which a solid tile of another layer
+  ;; in the same cell overrides); on a one-way layer every tile is one-way.
+  (define (solid-grid width height layers rules)
     (let* ((n (* width height))
-           (grid (make-u8vector n 0))
-           (one-way (one-way-gids tilesets extra-one-way)))
+           (grid (make-u8vector n 0)))
       (for-each
        (lambda (layer)
          (when (layer-collides? layer)
            (let ((data (layer-data layer)))
-             (if (or one-way (layer-one-way? layer))
+             (if (or rules (layer-one-way? layer))
                  (let ((all? (layer-one-way? layer)))
                    (do ((i 0 (fx+ i 1))) ((fx= i n))
                      (let ((g (fxand (u32vector-ref data i) gid-mask)))
                        (unless (fx= 0 g)
-                         (cond ((not (or all? (and one-way (hash-table-ref/default one-way g #f))))
-                                (u8vector-set! grid i 1))
-                               ((fx= 0 (u8vector-ref grid i)) (u8vector-set! grid i 2)))))))
+                         (let ((rule (and rules (hash-table-ref/default rules g #f))))
+                           (cond ((and rule (eq? (vector-ref rule 0) 'no)))
+                                 ((not (or all? (and rule (vector-ref rule 1))))
+                                  (u8vector-set! grid i 1))
+                                 ((fx= 0 (u8vector-ref grid i)) (u8vector-set! grid i 2))))))))
                  (do ((i 0 (fx+ i 1))) ((fx= i n))
                    (unless (fx= 0 (fxand (u32vector-ref data i) gid-mask))
                      (u8vector-set! grid i 1)))))))
        layers)
       grid))
 
+  ;; The kind of each cell: (grid . kinds), grid a u8vector of indices
+  ;; into the vector `kinds` (0: no kind), or #f when no tile has a kind.
+  ;; Every tile layer counts, colliding or not; where several have a tile
+  ;; with a kind, the last layer (drawn on top) wins.
+  (define (kind-grid width height layers rules map-source)
+    (let ((names (if rules
+                     (hash-table-fold rules (lambda (g rule acc)
+                                              (let ((k (vector-ref rule 2)))
+                                                (if (and k (not (memq k acc))) (cons k acc) acc)))
+                                      '())
+                     '())))
+      (and (pair? names)
+           (begin
+             (when (> (length names) 255)
+               (error 'load-tilemap (sprintf "~a: more than 255 tile kinds" (or map-source "a map made in code"))))
+             (let* ((n (* width height))
+                    (grid (make-u8vector n 0))
+                    (kinds (list->vector (cons #f (reverse names)))))
+               (define (index-of k) (let loop ((i 1)) (if (eq? (vector-ref kinds i) k) i (loop (fx+ i 1)))))
+               (for-each
+                (lambda (layer)
+                  (let ((data (layer-data layer)))
+                    (do ((i 0 (fx+ i 1))) ((fx= i n))
+                      (let ((g (fxand (u32vector-ref data i) gid-mask)))
+                        (unless (fx= 0 g)
+                          (let ((rule (hash-table-ref/default rules g #f)))
+                            (when (and rule (vector-ref rule 2))
+                              (u8vector-set! grid i (index-of (vector-ref rule 2))))))))))
+                layers)
+               (cons grid kinds))))))
+
   (define (make-tilemap width height tile-width tile-height layers
                         #!key (properties '()) (origin-col 0) (origin-row 0)
-                        (info '()) (tilesets '()) (layer-tree layers) (one-way '()))
+                        (info '()) (tilesets '()) (layer-tree layers) (one-way '()) (kinds '()))
     (for-each
      (lambda (layer)
        (unless (and (eq? (layer-kind layer) 'tile)
@@ -476,14 +603,17 @@
     (unless (and (fixnum? tile-width) (fx> tile-width 0)
                  (fixnum? tile-height) (fx> tile-height 0))
       (error 'make-tilemap "tile size must be positive integers" tile-width tile-height))
-    (%make-tilemap width height tile-width tile-height layers properties
-                   (solid-grid width height layers tilesets one-way) origin-col origin-row
-                   info tilesets layer-tree))
+    (let* ((source (let ((p (assq 'source info))) (and p (cdr p))))
+           (rules (tile-rules tilesets one-way kinds source)))
+      (%make-tilemap width height tile-width tile-height layers properties
+                     (solid-grid width height layers rules) origin-col origin-row
+                     info tilesets layer-tree (kind-grid width height layers rules source))))
 
   ;; A one-layer map from rows of tile ids: procedural levels, tests, the REPL.
-  ;; one-way: the tile ids that are one-way platforms.
+  ;; one-way: the tile ids that are one-way platforms; kinds: an alist
+  ;; (tile-id . kind) of the tiles' kinds (as the `kind` tile property).
   (define/keywords (list->tilemap rows #!key (tile-width 16) (tile-height 16) (name "tiles")
-                                  (one-way '()))
+                                  (one-way '()) (kinds '()))
     (let* ((height (length rows))
            (width (if (null? rows) 0 (length (car rows))))
            (data (make-u32vector (* width height) 0)))
@@ -502,7 +632,7 @@
           (loop (cdr rows) (+ j 1))))
       (make-tilemap width height tile-width tile-height
                     (list (make-layer name width height data))
-                    one-way: one-way)))
+                    one-way: one-way kinds: kinds)))
 
   ;;; ------------------------------------------------------------------
   ;;; Where Tiled draws things, for every orientation (the renderer and the
@@ -654,6 +784,12 @@
   (define (tilemap-one-way? tm col row)
     (let ((i (cell-index 'tilemap-one-way? tm col row)))
       (and i (fx= 2 (u8vector-ref (tilemap-solid-grid tm) i)))))
+
+  ;; The kind of the cell (a symbol, from its tile's `kind` property), or
+  ;; #f: O(1), a byte of a grid made when the map was.
+  (define (tilemap-kind tm col row)
+    (let ((i (cell-index 'tilemap-kind tm col row)) (k (tilemap-kinds tm)))
+      (and i k (vector-ref (cdr k) (u8vector-ref (car k) i)))))
 
   ;;; ------------------------------------------------------------------
   ;;; Properties

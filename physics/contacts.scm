@@ -172,17 +172,36 @@
             (values (shift a axis (- half) -1) (shift b axis half 1))
             (values (shift a axis half 1) (shift b axis (- half) -1))))))
 
-  ;; Where an immovable body was at the start of the frame's engine update:
-  ;; the pipeline's first step writes it as #:frame-start (x . y), so that
-  ;; the entity step knows what the body did this frame, whatever moved it
-  ;; (its velocity, a tween, a tile snap, the game).
+  ;; Where a body was at the start of the frame's engine update, as
+  ;; #:frame-start (x . y), a key the library owns: the pipeline's first
+  ;; step writes it on every immovable body, so that the entity step knows
+  ;; what the body did this frame, whatever moved it (its velocity, a
+  ;; tween, a tile snap, the game); and, in a scene that holds a one-way
+  ;; entity, on every other solid body too, so that a landing on a one-way
+  ;; platform is judged from where the body was before this frame's move
+  ;; (land-on-one-way). Other scenes pay nothing for the second.
   (define-pipeline (record-frame-start frame-start) (scene entity dt)
-    guard: (entity-ref entity #:immovable? #f)
+    guard: (or (entity-ref entity #:immovable? #f)
+               (and (entity-ref entity #:solid? #f) (one-way-scene? scene)))
     (let ((x (num entity #:x)) (y (num entity #:y))
           (old (entity-ref entity #:frame-start #f)))
       (if (and (pair? old) (eqv? (car old) x) (eqv? (cdr old) y))
           entity
           (entity-set entity #:frame-start (cons x y)))))
+
+  ;; Whether the scene holds a one-way entity (#:one-way? true), asked for
+  ;; every solid body by record-frame-start: the answer for the last
+  ;; scene asked about is kept, so a frame walks its list once.
+  (define last-one-way (cons #f #f))     ; (scene . answer)
+  (define (one-way-scene? scene)
+    (if (eq? (car last-one-way) scene)
+        (cdr last-one-way)
+        (let ((answer (let loop ((es (scene-entities scene)))
+                        (and (pair? es)
+                             (or (and (entity-ref (car es) #:one-way? #f) #t)
+                                 (loop (cdr es)))))))
+          (set! last-one-way (cons scene answer))
+          answer)))
 
   ;; How far a body moved since record-frame-start: 0 and 0 without a
   ;; record (a body that did not move, or a pipeline without that step).
@@ -226,10 +245,12 @@
   ;; it, its bottom on the lift's top and its #:vy 0, and is carried on x.
   ;; (Falling 1 px a frame, it would otherwise be left behind by any lift
   ;; faster than that.)
+  ;; A mover with #:drop-through? is not held by a one-way lift: it falls.
   (define (ride-down mover fixed dy)
     (let ((top (num fixed #:y))
           (bottom (+ (num mover #:y) (num mover #:height))))
       (if (and (>= (num mover #:vy) 0)
+               (not (and (entity-ref fixed #:one-way? #f) (entity-ref mover #:drop-through? #f)))
                (<= (- top dy) bottom top)
                (< (num mover #:x) (+ (num fixed #:x) (num fixed #:width)))
                (< (num fixed #:x) (+ (num mover #:x) (num mover #:width))))
@@ -253,18 +274,24 @@
 
   ;; A one-way entity (#:one-way?) is a jump-through platform, never
   ;; pushed: it stops only a mover falling onto it (vy > 0) whose bottom,
-  ;; before this frame's velocity step, was at or above the platform's top
-  ;; at the start of the frame (#:frame-start, else where it is). The mover
-  ;; is put on its top with #:vy 0 and carried like any rider; from below
-  ;; and from the side it passes through, and so does a mover with
-  ;; #:drop-through?.
+  ;; before this frame's move, was at or above the platform's top at the
+  ;; start of the frame. "Before this frame's move" is the mover's
+  ;; #:frame-start, where it was when the frame began, before its tween,
+  ;; its velocity and any push; a mover without one (a pipeline that
+  ;; leaves record-frame-start out) is judged from y - vy. The platform's
+  ;; top is its own #:frame-start, else where it is. The mover's bottom
+  ;; is put on the platform's top, #:vy 0, and it is carried like any
+  ;; rider; from below and from the side it passes through, and so does
+  ;; a mover with #:drop-through?.
   (define (land-on-one-way mover platform)
     (let* ((vy (num mover #:vy))
            (start (flag platform #:frame-start))
-           (top (if (pair? start) (cdr start) (num platform #:y))))
+           (top (if (pair? start) (cdr start) (num platform #:y)))
+           (own (flag mover #:frame-start))
+           (was (if (pair? own) (cdr own) (- (num mover #:y) vy))))
       (if (and (> vy 0)
                (not (flag mover #:drop-through?))
-               (<= (+ (- (num mover #:y) vy) (num mover #:height)) top))
+               (<= (+ was (num mover #:height)) top))
           (carry (entity-set* mover #:y (- (num platform #:y) (num mover #:height)) #:vy 0) platform)
           mover)))
 

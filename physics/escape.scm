@@ -6,10 +6,50 @@
 ;;; grows with the map's lines near the box, not with the box's size.
 
 (module (downstroke escape)
-  (tile-way-out)
+  (tile-way-out
+   ;; for sibling modules only: where the escape puts a body
+   escape-place)
 
-  (import scheme (chicken base) (chicken fixnum) (chicken sort) srfi-4
+  (import scheme (chicken base) (chicken fixnum) (chicken sort) (chicken foreign) srfi-4
           (downstroke map) (downstroke tile-grid))
+
+  (foreign-declare "#include <math.h>")
+
+  ;; The shortest move out of solid tiles, as two values dx dy (0 0 for
+  ;; a box in none): where escape-place puts the box, less where it was.
+  (define (tile-way-out tm x y w h)
+    (let-values (((nx ny) (escape-place tm x y w h)))
+      (values (if (eqv? nx x) 0 (- nx x)) (if (eqv? ny y) 0 (- ny y)))))
+
+  ;; Where the escape puts a box at (x, y) of w x h: the same (x, y) when
+  ;; it covers no solid tile, else the nearest place where it covers none
+  ;; (docs/physics.org, "A body that starts a frame inside solid tiles"):
+  ;; the search's move, exact for exact numbers. With flonums the move
+  ;; can round to a place a few 1e-15 px inside the tile it was to leave;
+  ;; a flonum coordinate the search moved is then stepped on, one flonum
+  ;; at a time in the direction of its move, until the box, computed in
+  ;; flonums as the tile passes compute it, covers no solid tile (at most
+  ;; a few steps), so the tile passes that follow never see it inside.
+  (define (escape-place tm x y w h)
+    (let-values (((dx dy) (search-way-out tm x y w h)))
+      (if (and (eqv? dx 0) (eqv? dy 0))
+          (values x y)
+          (let ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)) (rows (row-grid tm)))
+            (define (free? x y)
+              (not (nearest-solid-line rows (span-first y th) (span-last y h th) 1
+                                       (span-first x tw) (span-last x w tw))))
+            (let settle ((nx (+ x dx)) (ny (+ y dy)) (tries 0))
+              (if (or (fx= tries 8) (free? nx ny))
+                  (values nx ny)
+                  (settle (step-on nx dx) (step-on ny dy) (fx+ tries 1))))))))
+
+  ;; The next flonum after p in the direction of d (p itself when d is 0
+  ;; or p is exact).
+  (define next-flonum (foreign-lambda double "nextafter" double double))
+  (define (step-on p d)
+    (cond ((or (eqv? d 0) (exact? p)) p)
+          ((negative? d) (next-flonum p -inf.0))
+          (else (next-flonum p +inf.0))))
 
   ;; The shortest move (dx, dy) that takes the box at (x, y) of w x h out
   ;; of every solid tile (one-way tiles do not count): 0 0 when it is in
@@ -24,7 +64,7 @@
   ;; The search (nearest-free-pair) gives what trying every pair of
   ;; candidates, x candidates outside and y candidates inside, would give,
   ;; in time that grows with the candidates, not with their pairs.
-  (define (tile-way-out tm x y w h)
+  (define (search-way-out tm x y w h)
     (let* ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm))
            (rows (row-grid tm)) (cols (column-grid tm)))
       ;; the solid line of a box nearest its side `toward` (+1: the far

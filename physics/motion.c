@@ -38,10 +38,12 @@ static int ds_tile_stop(long v, long pn, long pd, long size, long an, long ad, l
   long lo = ds_max(ds_first(an, ad, tile_across) - cell_origin, 0);
   long hi = ds_min(ds_last(an, ad, across_size, tile_across) - cell_origin, cell_count - 1);
   long from = forward ? l0 : l1, to = forward ? l1 : l0, line, cell;
-  if (swept) {      /* from the line the leading edge was in before the move */
+  if (swept) {      /* from the cell the leading edge was in before the move,
+                       on the side it moves to: floor((s + size) / T) forward,
+                       ceil(s / T) - 1 = floor((s - 1/pd) / T) backward */
     long sn = pn - v * pd;
-    long s0 = ds_first(sn, pd, tile), s1 = ds_last(sn, pd, size, tile);
-    from = forward ? ds_min(ds_max(s0, s1), l0) : ds_max(ds_min(s0, s1), l1);
+    from = forward ? ds_min(ds_floor_div(sn + size * pd, pd * tile), l0)
+                   : ds_max(ds_floor_div(sn - 1, pd * tile), l1);
   }
   from -= line_origin;
   to -= line_origin;

@@ -6,7 +6,7 @@
 ;;; entities whose numbers it takes, through the rules for any other.
 
 (module (downstroke motion)
-  (apply-acceleration apply-gravity apply-velocity-x apply-velocity-y
+  (apply-acceleration apply-gravity apply-body-controls apply-velocity-x apply-velocity-y
    step-motion motion-pass)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign) srfi-4
@@ -51,6 +51,33 @@
     guard: (gravity-on? entity)
     (fall scene entity))
 
+  ;; Body controls (docs/physics.org, "Body controls"), opt-in keys:
+  ;; #:drag (on the ground: #:on-ground? from the frame before) or
+  ;; #:air-drag (otherwise) takes that much off |vx|, never past 0; then
+  ;; #:max-vx and #:max-vy clamp |vx| and |vy|. Exact with exact numbers.
+  (define (has-controls? e)
+    (or (assq #:drag e) (assq #:air-drag e) (assq #:max-vx e) (assq #:max-vy e)))
+
+  ;; Only a velocity that changes is written.
+  (define (control scene e)
+    (let* ((vx0 (num e #:vx)) (vy0 (num e #:vy))
+           (drag (num e (if (entity-ref e #:on-ground? #f) #:drag #:air-drag)))
+           (vx (cond ((zero? drag) vx0)
+                     ((> vx0 0) (let ((v (- vx0 drag))) (if (> v 0) v 0)))
+                     ((< vx0 0) (let ((v (+ vx0 drag))) (if (< v 0) v 0)))
+                     (else vx0)))
+           (vx (if (assq #:max-vx e) (clamp vx (num e #:max-vx)) vx))
+           (vy (if (assq #:max-vy e) (clamp vy0 (num e #:max-vy)) vy0))
+           (e (if (eqv? vx vx0) e (entity-set e #:vx vx))))
+      (if (eqv? vy vy0) e (entity-set e #:vy vy))))
+
+  ;; v, or the limit it passes (no inexact contagion when it is within)
+  (define (clamp v limit) (cond ((> v limit) limit) ((< v (- limit)) (- limit)) (else v)))
+
+  (define-pipeline (apply-body-controls controls) (scene entity dt)
+    guard: (has-controls? entity)
+    (control scene entity))
+
   (define-pipeline (apply-velocity-x velocity-x) (scene entity dt)
     (move-x scene entity))
 
@@ -69,16 +96,20 @@
   ;; The six steps one after the other, as the pipeline runs them. An
   ;; entity without #:skip-pipelines has each guard read once and each rule
   ;; called directly; any other runs the steps themselves.
-  (define (motion-steps scene e dt)
+  ;; controls?: whether the entity may have body controls (the pass asks
+  ;; only when some entity of the scene has them).
+  (define (motion-steps scene e dt controls?)
     (if (entity-ref e #:skip-pipelines #f)  ; a list, or the steps' error
         (let* ((e (apply-acceleration scene e dt))
                (e (apply-gravity scene e dt))
+               (e (if controls? (apply-body-controls scene e dt) e))
                (e (apply-velocity-x scene e dt))
                (e (resolve-tile-collisions-x scene e dt))
                (e (apply-velocity-y scene e dt)))
           (resolve-tile-collisions-y scene e dt))
         (let* ((map? (scene-tilemap scene))
                (e (if (gravity-on? e) (fall scene (accelerate scene e)) e))
+               (e (if (and controls? (has-controls? e)) (control scene e) e))
                (e (move-x scene e))
                (e (if map? (stop-at-tiles-x scene e) e))
                (e (move-y scene e)))
@@ -183,7 +214,11 @@
   ;; With ground? the pass also does ground detection (step 8), which
   ;; is only right when no entity of the scene is solid: the engine passes
   ;; it then, and only then.
-  (define (motion-pass scene dt #!optional ground?)
+  ;; controls? (default #t): whether some entity may have body controls
+  ;; (#:drag, #:air-drag, #:max-vx, #:max-vy, #:bounce); such an entity
+  ;; takes the readable steps. The engine passes #f when none has them,
+  ;; so that no entity is asked.
+  (define (motion-pass scene dt #!optional ground? (controls? #t))
     (let* ((tm (scene-tilemap scene))
            (map-data (and tm (pass-map tm)))
            (map? (and map-data #t))
@@ -200,11 +235,13 @@
            (out (make-vector 8 1)))
       ;; An entity the C code leaves (see above).
       (define (general e)
-        (let ((moved (motion-steps scene e dt)))
+        (let ((moved (motion-steps scene e dt controls?)))
           (if ground? (detect-on-solid scene moved dt) moved)))
       (if (and tm (not map?))
           general
           (lambda (e)
+           (if (and controls? (or (has-controls? e) (assq #:bounce e)))
+            (general e)
             (entity-let e ((xp #:x) (yp #:y) (wp #:width) (hp #:height) (vxp #:vx) (vyp #:vy)
                            (ayp #:ay) (gp #:gravity?) (skipp #:skip-pipelines)
                            (modep #:collision-mode) (onp #:on-ground?) (dropp #:drop-through?))
@@ -245,6 +282,6 @@
                                          vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
                                          vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
                                          ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
-                                         onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))))))))))
+                                         onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5)))))))))))))
 
 )

@@ -7,7 +7,7 @@
 ;;; error naming the entity and the key.
 
 (module (downstroke overlap)
-  (entity-overlap? scene-overlapping overlapping-pairs)
+  (entity-overlap? entity-overlap-side scene-overlapping overlapping-pairs)
 
   (import scheme (chicken base) (chicken fixnum)
           (downstroke entity) (downstroke scene) (downstroke physics)
@@ -21,6 +21,29 @@
     (let-values (((ax ay aw ah) (box a))
                  ((bx by bw bh) (box b)))
       (aabb-overlap? ax ay aw ah bx by bw bh)))
+
+  ;; From which side a met b, when their boxes overlap: above, below,
+  ;; left or right (a is above b: a stomp), else #f. Each box is first
+  ;; taken back by its velocity (#:vx, #:vy: where this frame's motion
+  ;; started); an axis on which those boxes did not overlap is the one
+  ;; they met on (y first, when neither did), a on the side its centre was
+  ;; then. When they overlapped on both axes already, the axis of the
+  ;; smaller overlap now decides (a tie goes to y), and the centres now.
+  (define (entity-overlap-side a b)
+    (let-values (((ax ay aw ah) (box a))
+                 ((bx by bw bh) (box b)))
+      (and (aabb-overlap? ax ay aw ah bx by bw bh)
+           (let* ((avx (entity-number a #:vx)) (avy (entity-number a #:vy))
+                  (bvx (entity-number b #:vx)) (bvy (entity-number b #:vy))
+                  (px (- ax avx)) (py (- ay avy)) (qx (- bx bvx)) (qy (- by bvy))
+                  (apart? (lambda (p s q t) (not (and (< p (+ q t)) (< q (+ p s))))))
+                  (overlap (lambda (p s q t) (- (min (+ p s) (+ q t)) (max p q))))
+                  (vertical (lambda (p q) (if (< (+ p p ah) (+ q q bh)) 'above 'below)))
+                  (horizontal (lambda (p q) (if (< (+ p p aw) (+ q q bw)) 'left 'right))))
+             (cond ((apart? py ah qy bh) (vertical py qy))
+                   ((apart? px aw qx bw) (horizontal px qx))
+                   ((< (overlap ax aw bx bw) (overlap ay ah by bh)) (horizontal ax bx))
+                   (else (vertical ay by)))))))
 
   ;; The entities of the scene that overlap `entity`, in scene order, not
   ;; counting `entity` itself (the same object). tag: only entities with

@@ -14,22 +14,23 @@
 ;;; (downstroke escape) the way out of solid tiles, (downstroke
 ;;; tile-collisions) the tile steps, (downstroke contacts) ground and
 ;;; bodies against bodies, (downstroke motion) the motion steps and the
-;;; motion pass, (downstroke groups) groups.
+;;; motion pass, (downstroke groups) groups, (downstroke touch) contacts
+;;; per side.
 
 (module (downstroke physics) ()
   ;; imported too, not only re-exported, so that loading this module loads
   ;; the code of all of them
   (import (chicken module) (downstroke tuning) (downstroke tile-grid) (downstroke escape)
           (downstroke tile-collisions) (downstroke contacts) (downstroke motion)
-          (downstroke groups))
-  ;; without the names after ";; for sibling modules only" in tile-grid.scm's
-  ;; and tile-collisions.scm's export lists (tests/layout-test.scm checks
+          (downstroke groups) (downstroke touch))
+  ;; without the names after ";; for sibling modules only" in tile-grid.scm's,
+  ;; escape.scm's and tile-collisions.scm's export lists (tests/layout-test.scm checks
   ;; that games do not see them)
   (reexport (downstroke tuning)
             (except (downstroke tile-grid)
-                    ->integer cell-of span-first span-last nearest-solid-line grids
+                    ->integer cell-of cell-ceiling span-first span-last nearest-solid-line grids
                     column-grid row-grid pass-map one-way-map?)
-            (downstroke escape)
+            (except (downstroke escape) escape-place)
             (except (downstroke tile-collisions)
                     swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground?)
-            (downstroke contacts) (downstroke motion) (downstroke groups)))
+            (downstroke contacts) (downstroke motion) (downstroke groups) (downstroke touch)))

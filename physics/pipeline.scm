@@ -32,6 +32,7 @@
       (scene-map-entities _ (cut step-tweens               <> <> dt))
       (scene-map-entities _ (cut apply-acceleration        <> <> dt))
       (scene-map-entities _ (cut apply-gravity             <> <> dt))
+      (scene-map-entities _ (cut apply-body-controls       <> <> dt))
       (scene-map-entities _ (cut apply-velocity-x          <> <> dt))
       (scene-map-entities _ (cut resolve-tile-collisions-x <> <> dt))
       (scene-map-entities _ (cut apply-velocity-y          <> <> dt))
@@ -39,6 +40,7 @@
       (scene-map-entities _ (cut detect-on-solid           <> <> dt))
       (scene-transform-entities _ resolve-entity-collisions)
       (scene-transform-entities _ sync-groups)
+      (scene-map-entities _ (cut detect-contacts           <> <> dt))
       (scene-map-entities _ (cut apply-animation           <> <> dt))
       (scene-map-entities _ (cut step-particles            <> <> dt))))
 
@@ -95,8 +97,10 @@
   (define-c-constant need-groups DS_NEED_GROUPS 8)         ; an entity has a #:group-id
   (define-c-constant need-animation DS_NEED_ANIMATION 16)  ; an entity has #:animations
   (define-c-constant need-support DS_NEED_SUPPORT 32)      ; an entity has #:solid? (it may hold others up)
-  (define-c-constant need-start DS_NEED_START 64)          ; an entity has #:immovable? (a platform may carry)
+  (define-c-constant need-start DS_NEED_START 64)          ; an entity has #:immovable? or #:one-way? (record-frame-start)
   (define-c-constant need-particles DS_NEED_PARTICLES 128) ; an entity has an #:emitter
+  (define-c-constant need-contacts DS_NEED_CONTACTS 256)   ; an entity has #:contacts?
+  (define-c-constant need-controls DS_NEED_CONTROLS 512)   ; an entity has a body control
   (define-c-constant key-tween DS_KEY_TWEEN 0)
   (define-c-constant key-gravity DS_KEY_GRAVITY 1)
   (define-c-constant key-solid DS_KEY_SOLID 2)
@@ -104,12 +108,21 @@
   (define-c-constant key-animations DS_KEY_ANIMATIONS 4)
   (define-c-constant key-immovable DS_KEY_IMMOVABLE 5)
   (define-c-constant key-emitter DS_KEY_EMITTER 6)
-  (define-c-constant need-key-count DS_NEED_KEYS 7)
+  (define-c-constant key-one-way DS_KEY_ONE_WAY 7)
+  (define-c-constant key-contacts DS_KEY_CONTACTS 8)
+  (define-c-constant key-drag DS_KEY_DRAG 9)
+  (define-c-constant key-air-drag DS_KEY_AIR_DRAG 10)
+  (define-c-constant key-max-vx DS_KEY_MAX_VX 11)
+  (define-c-constant key-max-vy DS_KEY_MAX_VY 12)
+  (define-c-constant key-bounce DS_KEY_BOUNCE 13)
+  (define-c-constant need-key-count DS_NEED_KEYS 14)
   (define need-keys
     (let ((v (make-vector need-key-count)))
       (for-each (lambda (i k) (vector-set! v i k))
-                (list key-tween key-gravity key-solid key-group-id key-animations key-immovable key-emitter)
-                (list #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter))
+                (list key-tween key-gravity key-solid key-group-id key-animations key-immovable key-emitter
+                      key-one-way key-contacts key-drag key-air-drag key-max-vx key-max-vy key-bounce)
+                (list #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter #:one-way?
+                      #:contacts? #:drag #:air-drag #:max-vx #:max-vy #:bounce))
       v))
 
   ;; The walk below, in C (needs.c): it reads every pair of every entity
@@ -139,8 +152,11 @@
                         ((eq? k #:tween) (walk (cdr ps) (fxior bits need-tweens) solid?))
                         ((eq? k #:group-id) (walk (cdr ps) (fxior bits need-groups) solid?))
                         ((eq? k #:animations) (walk (cdr ps) (fxior bits need-animation) solid?))
-                        ((eq? k #:immovable?) (walk (cdr ps) (fxior bits need-start) solid?))
+                        ((or (eq? k #:immovable?) (eq? k #:one-way?)) (walk (cdr ps) (fxior bits need-start) solid?))
                         ((eq? k #:emitter) (walk (cdr ps) (fxior bits need-particles) solid?))
+                        ((eq? k #:contacts?) (walk (cdr ps) (fxior bits need-contacts) solid?))
+                        ((memq k '(#:drag #:air-drag #:max-vx #:max-vy #:bounce))
+                         (walk (cdr ps) (fxior bits need-controls) solid?))
                         (else (walk (cdr ps) bits solid?)))))))))
 
   (define (needs? bits need) (not (fx= 0 (fxand bits need))))
@@ -158,8 +174,11 @@
     (let* ((before (pipeline-needs (scene-entities scene)))
            (tweens? (needs? before need-tweens))
            (ground-in-motion? (ground-joins-motion? before))
-           (move (motion-pass scene dt ground-in-motion?))
-           ;; where platforms start, when one may carry a rider this frame
+           ;; a tween's on-complete may add a body control: then every
+           ;; entity is asked
+           (move (motion-pass scene dt ground-in-motion? (or tweens? (needs? before need-controls))))
+           ;; where platforms start, when one may carry a rider this frame,
+           ;; and where solid bodies start, when one may land on a one-way one
            (starts? (needs? before need-start))
            (scene (scene-map-entities scene (cond ((and tweens? starts?)
                                                    (lambda (s e) (move (step-tweens s (record-frame-start s e dt) dt))))
@@ -176,6 +195,8 @@
              (ground-pass _)
              (when-needed need-pairs (cut scene-transform-entities <> resolve-entity-collisions) _)
              (when-needed need-groups (cut scene-transform-entities <> sync-groups) _)
+             (when-needed need-contacts
+                          (cut scene-map-entities <> (lambda (s e) (detect-contacts s e dt))) _)
              (when-needed need-animation
                           (cut scene-map-entities <> (lambda (s e) (apply-animation s e dt))) _)
              (when-needed need-particles

@@ -56,100 +56,126 @@
 
   ;; One tile pass on one axis, for a body at `pos` of `size` with velocity
   ;; v (not 0), spanning across..across+across-size on the other axis:
-  ;; where it stops, or #f when no solid tile is in its way. `moved` is how
-  ;; far the velocity step moved the body this frame (v, or 0 when the body
-  ;; skips that step), so pos - moved is where the frame's motion started.
-  ;; swept: the scan starts there (a sweep covers only the motion made this
-  ;; frame). one-way?: one-way tiles whose top the body's bottom was at or
-  ;; above at that start count too (the y pass of a falling body).
-  (define (tile-stop v pos size across across-size swept moved one-way? tile tile-across grid)
-    ;; swept: from the line the leading edge was in before the move. Only
+  ;; where it stops, or #f when no solid tile is in its way. `start` is
+  ;; where the frame's motion on this axis started: pos - v, or pos when
+  ;; the body skips that axis's velocity step, or where the escape put it
+  ;; (velocity-moved, leave-solids). swept: the scan starts there (a sweep
+  ;; covers only the motion made this frame). one-way?: one-way tiles
+  ;; whose top the body's bottom was at or above at that start count too
+  ;; (the y pass of a falling body).
+  (define (tile-stop v pos size across across-size swept start one-way? tile tile-across grid)
+    ;; swept: from the line of cells the leading edge was in at the start,
+    ;; the cell holding it on the side it moves to: moving right (down),
+    ;; the cell of start + size, floor((start + size) / T); moving left
+    ;; (up), the cell just below start, ceil(start / T) - 1. An edge off
+    ;; the grid lines is in the box's last (first) cell; an edge exactly
+    ;; on a grid line is in the cell beyond it, which the box does not
+    ;; cover, so a box that starts inside a solid cell (a tweened body is
+    ;; not taken out) is not thrown back by that cell as it leaves it. The
+    ;; scan never starts past the line the discrete step starts at. Only
     ;; the leading edge counts, so a body leaving a wall it touched is not
     ;; caught by that wall when pos - v rounds (flonums) to just inside it.
-    ;; (A zero-size body on a tile edge covers no line: its leading line is
-    ;; the one it moves into.)
     (let* ((l0 (span-first pos tile)) (l1 (span-last pos size tile))
            (c0 (span-first across tile-across)) (c1 (span-last across across-size tile-across))
-           (start (- pos moved))
            (one-way-top (and one-way? (+ start size))))
       (let ((line (if (> v 0)
                       (nearest-solid-line grid
-                                          (if swept
-                                              (min (max (span-first start tile) (span-last start size tile)) l0)
-                                              l0)
+                                          (if swept (min (cell-of (+ start size) tile) l0) l0)
                                           l1 1 c0 c1 one-way-top tile)
                       (nearest-solid-line grid
-                                          (if swept
-                                              (max (min (span-first start tile) (span-last start size tile)) l1)
-                                              l1)
+                                          (if swept (max (- (cell-ceiling start tile) 1) l1) l1)
                                           l0 -1 c0 c1))))
         (and line (tile-push-pos v line tile size)))))
 
   ;; Both tile passes: pos-key is the axis resolved, across-key the other,
-  ;; velocity-step the skip symbol of the step that moves pos-key. A
-  ;; velocity of 0 snaps nothing. A body with #:drop-through? falls
-  ;; through one-way tiles.
-  (define (resolve-tiles entity swept pos-key size-key vel-key velocity-step across-key across-size-key
+  ;; `start` where this axis's motion started. A velocity of 0 snaps
+  ;; nothing. A body with #:drop-through? falls through one-way tiles.
+  (define (resolve-tiles entity swept start pos-key size-key vel-key across-key across-size-key
                          tile tile-across grid)
     (let ((v (num entity vel-key)))
       (if (zero? v)
           entity
           (let ((stop (tile-stop v (num entity pos-key) (num entity size-key)
                                  (num entity across-key) (num entity across-size-key)
-                                 swept (if (entity-skips-pipeline? entity velocity-step) 0 v)
+                                 swept start
                                  (and (eq? pos-key #:y) (> v 0) (not (entity-ref entity #:drop-through? #f)))
                                  tile tile-across grid)))
             (if stop
-                (entity-set* entity pos-key stop vel-key 0)
+                (entity-set* entity pos-key stop vel-key (rebound entity v))
                 entity)))))
+
+  ;; The velocity a body leaves a tile with on the axis it hit it: 0, or
+  ;; with #:bounce b, -v * b (docs/physics.org, "Body controls"). A body
+  ;; that hits at 1 px/frame or less stops, so one resting on a floor
+  ;; under gravity settles.
+  (define (rebound entity v)
+    (let ((b (assq #:bounce entity)))
+      (if (and b (> (abs v) 1))
+          (- (* v (num entity #:bounce)))
+          0)))
 
   ;; Swept mode, before a body's first tile pass of the frame: a body that
   ;; starts the frame inside solid tiles (an entity push can leave it
   ;; there) and moves is first taken out of them by the shortest way, so
   ;; that no push ever carries a body through a wall (docs/physics.org, "A
-  ;; body that starts a frame inside solid tiles"). A body at rest (both velocities 0) is left where it is,
-  ;; as the tile passes leave it. Where a body's frame started is
-  ;; pos - v only for a body its velocity moves: one with a #:tween, or one
-  ;; that skips both velocity steps (a tween or the game places it), is
-  ;; left to the tile passes, as discrete mode resolves it. (sx, sy) is
-  ;; where the frame's motion started; the entity is moved by the same
-  ;; amount.
-  (define (leave-solids entity tm sx sy)
+  ;; body that starts a frame inside solid tiles"). A body at rest (both
+  ;; velocities 0) is left where it is, as the tile passes leave it. Where
+  ;; a body's frame started is pos - v only for a body its velocity moves:
+  ;; one with a #:tween, or one that skips both velocity steps (a tween or
+  ;; the game places it), is left to the tile passes, as discrete mode
+  ;; resolves it. (sx, sy) is where the frame's motion started, (mx, my)
+  ;; how far the velocity steps have moved the body since. The escape
+  ;; puts the start where escape-place says and the body as far from it
+  ;; as it was; the answer is the entity and the new start on `axis`
+  ;; (#:x or #:y), which that axis's sweep starts from, as it is, not
+  ;; recomputed from the new position (flonums would round it).
+  (define (leave-solids entity tm sx sy mx my axis)
     (if (or (and (zero? (num entity #:vx)) (zero? (num entity #:vy)))
             (entity-ref entity #:tween #f)
             (and (entity-skips-pipeline? entity 'velocity-x)
                  (entity-skips-pipeline? entity 'velocity-y)))
-        entity
-        (let-values (((dx dy) (tile-way-out tm sx sy (num entity #:width) (num entity #:height))))
-          (if (and (eqv? dx 0) (eqv? dy 0))
-              entity
-              (entity-set* entity #:x (+ (num entity #:x) dx) #:y (+ (num entity #:y) dy))))))
+        (values entity (if (eq? axis #:x) sx sy))
+        (let-values (((nx ny) (escape-place tm sx sy (num entity #:width) (num entity #:height))))
+          (values (if (and (eqv? nx sx) (eqv? ny sy))
+                      entity
+                      (entity-set* entity
+                                   #:x (if (eqv? nx sx) (num entity #:x) (+ nx mx))
+                                   #:y (if (eqv? ny sy) (num entity #:y) (+ ny my))))
+                  (if (eq? axis #:x) nx ny)))))
 
-  ;; Where the frame's motion started on one axis: pos less what the
-  ;; velocity step moved (nothing when the body skips that step).
-  (define (motion-start entity pos-key vel-key velocity-step)
-    (if (entity-skips-pipeline? entity velocity-step)
-        (num entity pos-key)
-        (- (num entity pos-key) (num entity vel-key))))
+  ;; How far the velocity step moved the body on one axis this frame:
+  ;; its velocity, or nothing when it skips that step.
+  (define (velocity-moved entity vel-key velocity-step)
+    (if (entity-skips-pipeline? entity velocity-step) 0 (num entity vel-key)))
 
+  ;; The x pass: a swept body first leaves solid tiles, from where its
+  ;; frame started, (x - vx, y).
   (define (stop-at-tiles-x scene entity)
     (let* ((tm (scene-tilemap scene))
            (swept (swept? scene entity))
-           (entity (if swept
-                       (leave-solids entity tm (motion-start entity #:x #:vx 'velocity-x) (num entity #:y))
-                       entity)))
-      (resolve-tiles entity swept #:x #:width #:vx 'velocity-x #:y #:height
-                     (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm))))
+           (mx (velocity-moved entity #:vx 'velocity-x))
+           (sx (- (num entity #:x) mx)))
+      (let-values (((entity sx) (if swept
+                                    (leave-solids entity tm sx (num entity #:y) mx 0 #:x)
+                                    (values entity sx))))
+        (resolve-tiles entity swept sx #:x #:width #:vx #:y #:height
+                       (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm)))))
 
-  ;; A body that skips the x tile pass leaves solid tiles here.
+  ;; The y pass. A swept body that skips the x tile pass leaves solid
+  ;; tiles here, from where its frame started on both axes, (x - vx,
+  ;; y - vy).
   (define (stop-at-tiles-y scene entity)
     (let* ((tm (scene-tilemap scene))
            (swept (swept? scene entity))
-           (entity (if (and swept (entity-skips-pipeline? entity 'tile-collisions-x))
-                       (leave-solids entity tm (num entity #:x) (motion-start entity #:y #:vy 'velocity-y))
-                       entity)))
-      (resolve-tiles entity swept #:y #:height #:vy 'velocity-y #:x #:width
-                     (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm))))
+           (my (velocity-moved entity #:vy 'velocity-y))
+           (sy (- (num entity #:y) my)))
+      (let-values (((entity sy)
+                    (if (and swept (entity-skips-pipeline? entity 'tile-collisions-x))
+                        (let ((mx (velocity-moved entity #:vx 'velocity-x)))
+                          (leave-solids entity tm (- (num entity #:x) mx) sy mx my #:y))
+                        (values entity sy))))
+        (resolve-tiles entity swept sy #:y #:height #:vy #:x #:width
+                       (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm)))))
 
   (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
     guard: (scene-tilemap scene)

@@ -8,7 +8,7 @@
   (entity-tile-cells entity-cell-span tile-push-pos
    ;; for sibling modules only: the cell arithmetic and the grids the tile
    ;; rules, the escape search and the motion kernel share
-   ->integer cell-of span-first span-last nearest-solid-line grids
+   ->integer cell-of cell-ceiling span-first span-last nearest-solid-line grids
    column-grid row-grid pass-map one-way-map?)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign) srfi-4
@@ -23,6 +23,13 @@
     (if (exact-integer? pos)
         (floor-div pos tile)
         (->integer (floor (/ pos tile)))))
+
+  ;; ceil(pos / T): the cell just past a grid line at pos, and for pos
+  ;; off the lines the cell holding it, plus one.
+  (define (cell-ceiling pos tile)
+    (if (exact-integer? pos)
+        (+ (floor-div (- pos 1) tile) 1)
+        (->integer (ceiling (/ pos tile)))))
 
   ;; The first and last cell a span [pos, pos+size) covers on one axis:
   ;; floor(pos/T) to ceil((pos+size)/T) - 1, which for integers is the

@@ -130,7 +130,7 @@
                      (repository-path))
                 ":"))
          ;; each facade, and the modules whose sibling-only names it must not offer
-         (cases '((engine game level input) (tilemap map objects) (physics tile-grid tile-collisions body)))
+         (cases '((engine game level input) (tilemap map objects) (physics tile-grid escape tile-collisions body)))
          (exported?
           (lambda (facade name)
             ;; `only` of a name the module does not export is only a

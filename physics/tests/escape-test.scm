@@ -5,7 +5,7 @@
 
 (import scheme (chicken base) (chicken format) (chicken process-context) (downstroke test) (downstroke entity)
         (downstroke tilemap) (downstroke scene) (downstroke pipeline) (downstroke util)
-        (chicken sort) srfi-4 (only (downstroke physics) *gravity* tile-way-out entity-cell-span))
+        (chicken sort) srfi-4 (only (downstroke tween) make-tween) (only (downstroke physics) *gravity* tile-way-out entity-cell-span))
 
 (include-relative "../../tests/bounded-support.scm")
 
@@ -335,6 +335,10 @@
        (write (list "wide"
                     (frame (list->tilemap '((1 1 1) (1 0 1) (1 1 1)) tile-width: 32 tile-height: 32)
                            (list (body ,(- (expt 10 11) (expt 10 12)) 40 ,(expt 10 12) 100 4)))))
+       (newline)
+       (write (list "wide flonum"
+                    (frame (list->tilemap '((1 1 1) (1 0 1) (1 1 1)) tile-width: 32 tile-height: 32)
+                           (list (body -9e11 40 1e12 100 4)))))
        (newline))))
   (test "each body out of the block by its nearest side, then 1 px right"
         (map (lambda (b)
@@ -344,4 +348,79 @@
         (bounded-result results "block"))
   (test "the wide body out below the map (56 px down), then 4 px right"
         (list (list (+ (- (expt 10 11) (expt 10 12)) 4) 96))
-        (bounded-result results "wide")))
+        (bounded-result results "wide"))
+  (test "the same body in flonums (1e12 x 100): the same way out" (list (list (+ -9e11 4) 96))
+        (bounded-result results "wide flonum")))
+
+;;; Flonums: where the escape puts a body, and where that frame's sweep
+;;; starts (docs/physics.org, "A body that starts a frame inside solid
+;;; tiles").
+
+(test-group "escape: flonum rounding never leaves a body inside, nor restarts its sweep elsewhere"
+  ;; 16 px tiles: a floor in row 1 (y 16 to 32), four columns wide
+  (define floor-map (list->tilemap '((0 0 0 0) (1 1 1 1) (0 0 0 0))))
+  ;; sunk into the floor: up by 22.72 is nearest, and -19.2 + 176/5 rounds
+  ;; to a hair below 16 only if the move is computed with care
+  (test "out of the floor by the top, then on along x: x 51/2 (the escape's box is clear of row 1)"
+        '(51/2 -96/5 5/2 0)
+        (es-frame floor-map 'swept (es-ent #:x 23 #:y 3.52 #:width 16 #:height 176/5 #:vx 5/2 #:vy 2
+                                           #:gravity? #t)
+                  xyv))
+  (test "the same with the readable steps" '(51/2 -96/5 5/2 0)
+        (es-frame floor-map 'swept (es-ent #:x 23 #:y 3.52 #:width 16 #:height 176/5 #:vx 5/2 #:vy 2
+                                           #:gravity? #t)
+                  xyv contract-pipeline))
+  (test "tile-way-out's box covers no solid tile, by the tiles' own arithmetic" #f
+        (let-values (((dx dy) (tile-way-out floor-map 23 3.52 16 176/5)))
+          (let-values (((r0 r1) (entity-cell-span (+ 3.52 dy) 176/5 16)))
+            (and (<= r0 1 r1) (list dx dy)))))
+  ;; 8 px tiles, row 5 (y 40 to 48) solid: a zero-width body 3.52 px into
+  ;; column 1 goes out left to x 8, then its sweep from x 8 meets column 1
+  (let ((tm (list->tilemap '((0 0 0 0 0 0) (0 0 0 0 0 0) (0 0 0 0 0 0) (0 0 0 0 0 0) (0 0 0 0 0 0)
+                             (1 1 1 1 1 1) (0 0 0 0 0 0) (0 0 0 0 0 0) (0 0 0 0 0 0))
+                           tile-width: 8 tile-height: 8)))
+    (test "a zero-width body escapes to x 8 and its sweep starts there: stopped at x 8" '(8 44.28 0 16.25)
+          (es-frame tm 'swept (es-ent #:x 11.52 #:y 28.03 #:width 0 #:height 25.528 #:vx 14.882 #:vy 16.25)
+                    xyv))))
+
+(test-group "escape: ties, starts, tweens"
+  ;; a 3 x 3 block of solid tiles, 32..80 on both axes, in open air
+  (define block (list->tilemap '((0 0 0 0 0 0 0) (0 0 0 0 0 0 0) (0 0 1 1 1 0 0) (0 0 1 1 1 0 0)
+                                 (0 0 1 1 1 0 0) (0 0 0 0 0 0 0) (0 0 0 0 0 0 0))))
+  ;; 8 px tiles, a 5 x 5 solid map with holes (0) at the given cells
+  (define (holes . cells)
+    (list->tilemap (let rows ((j 0))
+                     (if (= j 5) '()
+                         (cons (let cols ((i 0))
+                                 (if (= i 5) '()
+                                     (cons (if (member (cons i j) cells) 0 1) (cols (+ i 1)))))
+                               (rows (+ j 1)))))
+                   tile-width: 8 tile-height: 8))
+  ;; the box 8 x 8 at (16, 12) covers column 2, rows 1 and 2; the holes
+  ;; up-left and up-right are both (8, 4) away
+  (test "equal diagonal moves: leftward before rightward" '(-8 -4)
+        (es-way-out (holes '(1 . 1) '(3 . 1)) 16 12 8 8))
+  ;; the box 8 x 8 at (12, 16): the holes up-left and down-left are both (4, 8) away
+  (test "equal diagonal moves with the same sideways part: upward before downward" '(-4 -8)
+        (es-way-out (holes '(1 . 1) '(1 . 3)) 12 16 8 8))
+  (test "a body that skips the x tile pass leaves the tiles from where its frame began, (x - vx, y - vy)"
+        '(88 53 8 1)
+        (es-frame block 'swept (es-ent #:x 76 #:y 52 #:width 8 #:height 8 #:vx 8 #:vy 1
+                                       #:skip-pipelines '(tile-collisions-x))
+                  xyv))
+  (test "a body with a #:tween is not taken out of the tiles: the tile passes resolve it" '(40 40 0 0)
+        (es-frame block 'swept (es-ent #:x 52 #:y 52 #:width 8 #:height 8 #:vx 4 #:vy 1
+                                       #:tween (make-tween (list (cons #:z 0)) props: '((#:z . 10)) duration: 160))
+                  xyv))
+  (test "its tile passes still sweep: at 60 px/frame it stops at the block" '(24 36 0 0)
+        (es-frame block 'swept (es-ent #:x 0 #:y 36 #:width 8 #:height 8 #:vx 60 #:vy 0
+                                       #:tween (make-tween (list (cons #:z 0)) props: '((#:z . 10)) duration: 160))
+                  xyv))
+  (test "a tweened box inside column 1 whose right edge is on the grid line leaves it forward" '(32 52 4 0)
+        ;; from x 28 (4 wide, in solid column 1) at 4 px/frame: its leading
+        ;; edge starts on line 32, in column 2, so the sweep starts there
+        ;; as the discrete step does, and column 1 does not throw it back
+        (es-frame (list->tilemap '((0 0 0 0 0) (0 0 0 0 0) (0 0 0 0 0) (0 1 0 0 0)))
+                  'swept (es-ent #:x 28 #:y 52 #:width 4 #:height 8 #:vx 4 #:vy 0
+                                 #:tween (make-tween (list (cons #:z 0)) props: '((#:z . 10)) duration: 160))
+                  xyv)))

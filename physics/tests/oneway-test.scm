@@ -5,7 +5,7 @@
 
 (import scheme (chicken base) (chicken format) (chicken file) (chicken io) (chicken condition) (chicken string)
         (downstroke test) (downstroke entity) (downstroke scene) (downstroke tilemap)
-        (downstroke pipeline))
+        (downstroke pipeline) (only (downstroke physics) detect-on-solid))
 
 (define (ow-ent . plist) (plist->entity plist))
 
@@ -165,3 +165,98 @@
   (test "a moving one-way platform carries its rider" '(40 58 88)
         (let* ((es (run (list (platform #:vx 2) (body #:y 86)) 20)))
           (list (entity-ref (the 'platform es) #:x) (entity-ref (the 'body es) #:x) (entity-ref (the 'body es) #:y)))))
+
+;; docs/physics.org, "One-way platforms": a body with #:drop-through? is
+;; not held by a one-way lift either, and a landing is judged from where
+;; the body was when the frame began (its #:frame-start), whatever moved
+;; it since: its velocity, a push, or nothing.
+(test-group "one-way entities: dropping through a lift, and where the frame began"
+  (define (ledge . more)
+    (apply ow-ent #:type 'ledge #:x 0 #:y 100 #:width 48 #:height 8
+           #:solid? #t #:immovable? #t #:one-way? #t more))
+  (define (the type es) (let loop ((es es)) (if (eq? (entity-ref (car es) #:type) type) (car es) (loop (cdr es)))))
+  ;; each frame's (y vy) of the entity of that type
+  (define (frames es type n)
+    (let loop ((s (make-scene entities: es)) (k 0) (out '()))
+      (if (= k n)
+          (reverse out)
+          (let ((s (engine-pipeline s 16)))
+            (loop s (+ k 1) (cons (let ((e (the type (scene-entities s))))
+                                    (list (entity-ref e #:y) (entity-ref e #:vy)))
+                                  out))))))
+  (test "a drop-through rider falls through a lift going down (it is not carried)"
+        '((89 1) (91 2) (94 3))
+        (frames (list (ledge #:vy 3)
+                      (ow-ent #:type 'rider #:x 10 #:y 88 #:width 12 #:height 12
+                              #:gravity? #t #:solid? #t #:drop-through? #t))
+                'rider 3))
+  (test "without #:drop-through? the lift carries it down" '((91 0) (94 0) (97 0))
+        (frames (list (ledge #:vy 3)
+                      (ow-ent #:type 'rider #:x 10 #:y 88 #:width 12 #:height 12 #:gravity? #t #:solid? #t))
+                'rider 3))
+  (test "a body pushed into the ledge from above lands on it (its bottom was at 98)"
+        '((94 0) (94 0))
+        (frames (list (ow-ent #:type 'a #:x 10 #:y 80 #:width 12 #:height 16 #:solid? #t)
+                      (ow-ent #:type 'b #:x 10 #:y 92 #:width 12 #:height 6 #:vy 3 #:solid? #t)
+                      (ledge))
+                'b 2))
+  (test "a body that did not move, sunk into the ledge, stays where it is" '((95 10))
+        (frames (list (ow-ent #:type 'b #:x 10 #:y 95 #:width 12 #:height 12 #:vy 10 #:solid? #t
+                              #:skip-pipelines '(velocity-y))
+                      (ledge))
+                'b 1))
+  (test "a body that came from below the top is not lifted onto it" '((97 4))
+        (frames (list (ow-ent #:type 'b #:x 10 #:y 93 #:width 12 #:height 12 #:vy 4 #:solid? #t)
+                      (ledge))
+                'b 1))
+  (test "#:frame-start is written on solid bodies only in a scene with a one-way entity" '((10 . 92) #f)
+        (list (entity-ref (the 'b (scene-entities
+                                   (engine-pipeline
+                                    (make-scene entities: (list (ow-ent #:type 'b #:x 10 #:y 92 #:width 12 #:height 6
+                                                                        #:vy 3 #:solid? #t)
+                                                                (ledge)))
+                                    16)))
+                          #:frame-start)
+              (entity-ref (the 'b (scene-entities
+                                   (engine-pipeline
+                                    (make-scene entities: (list (ow-ent #:type 'b #:x 10 #:y 92 #:width 12 #:height 6
+                                                                        #:vy 3 #:solid? #t)
+                                                                (ow-ent #:type 'ledge #:x 0 #:y 100 #:width 48 #:height 8
+                                                                        #:solid? #t #:immovable? #t)))
+                                    16)))
+                          #:frame-start)))
+  (test "the readable steps say the same" '((94 0) (94 0))
+        (let loop ((s (make-scene entities: (list (ow-ent #:type 'a #:x 10 #:y 80 #:width 12 #:height 16 #:solid? #t)
+                                                  (ow-ent #:type 'b #:x 10 #:y 92 #:width 12 #:height 6 #:vy 3 #:solid? #t)
+                                                  (ledge))))
+                   (k 0) (out '()))
+          (if (= k 2)
+              (reverse out)
+              (let ((s (contract-pipeline s 16)))
+                (loop s (+ k 1) (cons (let ((e (the 'b (scene-entities s)))) (list (entity-ref e #:y) (entity-ref e #:vy)))
+                                      out)))))))
+
+;; docs/physics.org, "Standing on things" and "One-way platforms": the
+;; readings settled there.
+(test-group "one-way: ground and landing, precisely"
+  (define ledge (ow-ent #:type 'ledge #:x 0 #:y 100 #:width 48 #:height 8
+                        #:solid? #t #:immovable? #t #:one-way? #t))
+  (define (grounded? body . more)
+    (entity-ref (detect-on-solid (make-scene tilemap: (and (pair? more) (car more)) entities: (list ledge body))
+                                 body 16)
+                #:on-ground?))
+  (define (feet y vy) (ow-ent #:type 'b #:x 10 #:y y #:width 12 #:height 12 #:vy vy #:gravity? #t #:solid? #t))
+  (test "a one-way entity: a body 2 px above it, not rising, is on the ground" #t (grounded? (feet 86 0)))
+  (test "a one-way entity: the same body rising is not" #f (grounded? (feet 86 -1)))
+  (test "a one-way entity: a rider 5 px inside it, not rising, is on the ground" #t (grounded? (feet 93 0)))
+  (test "a one-way tile: a body on its top, rising, is on the ground (tiles ask no velocity)" #t
+        (entity-ref (detect-on-solid (make-scene tilemap: ow-map entities: '())
+                                     (ow-ent #:x 40 #:y 52 #:width 12 #:height 12 #:vy -1 #:gravity? #t) 16)
+                    #:on-ground?))
+  (test "landing puts the bottom on the top: y is exactly top - height, vy 0" '(88 0)
+        (let ((b (car (scene-entities
+                       (engine-pipeline (make-scene entities: (list (ow-ent #:type 'b #:x 10 #:y 87.3 #:width 12 #:height 12
+                                                                            #:vy 2.9 #:solid? #t)
+                                                                    ledge))
+                                        16)))))
+          (list (entity-ref b #:y) (entity-ref b #:vy)))))

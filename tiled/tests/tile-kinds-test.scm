@@ -1,0 +1,93 @@
+;;; Tiles that say what they are (docs/tilemaps.org, "Tile properties"):
+;;; the properties of a tile in its tileset decide whether it collides,
+;;; whether it is one-way, and its kind, read per cell; a misspelt or
+;;; wrongly typed one is an error naming the file when the map loads.
+
+(import scheme (chicken base) (chicken format) (chicken file) (chicken condition)
+        (chicken process-context posix) (chicken string)
+        (downstroke test) (downstroke tilemap))
+
+;; A 4 x 2 map of 16 px tiles over a tileset of four tiles whose <tile>
+;; elements are `tiles`; row 0 holds gids 1 2 3 4 on layer "ground",
+;; row 1 the gids of `second` on a second layer when it is given.
+(define (tk-tmx path tiles #!optional second (second-props ""))
+  (with-output-to-file path
+    (lambda ()
+      (print "<?xml version=\"1.0\" encoding=\"UTF-8\"?>")
+      (print "<map version=\"1.8\" orientation=\"orthogonal\" renderorder=\"right-down\" width=\"4\" height=\"2\" tilewidth=\"16\" tileheight=\"16\" infinite=\"0\" nextlayerid=\"3\" nextobjectid=\"1\">")
+      (print " <tileset firstgid=\"1\" name=\"kinds\" tilewidth=\"16\" tileheight=\"16\" tilecount=\"4\" columns=\"4\">")
+      (print "  <image source=\"../docs/images/demo-getting-started.png\" width=\"320\" height=\"240\"/>")
+      (print tiles)
+      (print " </tileset>")
+      (print " <layer id=\"1\" name=\"ground\" width=\"4\" height=\"2\">")
+      (print "  <data encoding=\"csv\">1,2,3,4,0,0,0,0</data>")
+      (print " </layer>")
+      (when second
+        (print " <layer id=\"2\" name=\"over\" width=\"4\" height=\"2\">")
+        (print second-props)
+        (print "  <data encoding=\"csv\">" second "</data>")
+        (print " </layer>"))
+      (print "</map>"))))
+
+(define (tk-tile id . props)
+  (sprintf "  <tile id=\"~a\"><properties>~a</properties></tile>" id
+           (apply string-append
+                  (map (lambda (p) (sprintf "<property name=\"~a\" type=\"~a\" value=\"~a\"/>" (car p) (cadr p) (caddr p)))
+                       props))))
+
+;; The message of the error loading raises, or #f.
+(define (tk-load-error path)
+  (handle-exceptions exn ((condition-property-accessor 'exn 'message "") exn)
+    (load-tilemap path)
+    #f))
+
+(define tk-path (sprintf "tile-kinds-~a.tmx" (current-process-id)))
+
+(test-group "tile properties: collides, one-way, kind"
+  (tk-tmx tk-path (string-append (tk-tile 1 '("collides" "bool" "false"))
+                                 (tk-tile 2 '("one-way" "bool" "true"))
+                                 (tk-tile 3 '("kind" "string" "hazard"))))
+  (let ((tm (load-tilemap tk-path)))
+    (test "a tile with no property is solid (the default)" '(#t #f #f)
+          (list (tilemap-solid? tm 0 0) (tilemap-one-way? tm 0 0) (tilemap-kind tm 0 0)))
+    (test "collides false: not solid, not one-way" '(#f #f)
+          (list (tilemap-solid? tm 1 0) (tilemap-one-way? tm 1 0)))
+    (test "one-way true: one-way, and tilemap-solid? answers #f on it" '(#t #f)
+          (list (tilemap-one-way? tm 2 0) (tilemap-solid? tm 2 0)))
+    (test "kind: the cell's kind is the symbol; the tile is still solid" '(hazard #t)
+          (list (tilemap-kind tm 3 0) (tilemap-solid? tm 3 0)))
+    (test "empty cells and cells outside the map have no kind" '(#f #f #f)
+          (list (tilemap-kind tm 3 1) (tilemap-kind tm 9 0) (tilemap-kind tm -1 -1))))
+  (tk-tmx tk-path (string-append (tk-tile 0 '("kind" "string" "water") '("collides" "bool" "false"))
+                                 (tk-tile 1 '("kind" "string" "spikes")))
+          "0,0,0,2,0,0,0,0"
+          "<properties><property name=\"collides\" type=\"bool\" value=\"false\"/></properties>")
+  (let ((tm (load-tilemap tk-path)))
+    (test "the top layer's kind wins, and a decoration layer's kinds count" '(water spikes)
+          (list (tilemap-kind tm 0 0) (tilemap-kind tm 3 0)))
+    (test "a kind read on a map without kinds is #f" #f
+          (tilemap-kind (list->tilemap '((1 1))) 0 0)))
+  (test "the table names every property Downstroke reads, with its type"
+        '(("collides" . bool) ("one-way" . bool) ("kind" . string))
+        tile-property-table))
+
+(test-group "tile properties: a misspelt or wrongly typed one is named at load"
+  (define (message tiles)
+    (tk-tmx tk-path tiles)
+    (tk-load-error tk-path))
+  (define (names? msg . words)
+    (and msg (let loop ((ws (cons tk-path words)))
+               (or (null? ws) (and (substring-index (car ws) msg) (loop (cdr ws)))))))
+  (test-assert "\"oneway\": the file, the tile, the name and the one it resembles"
+               (names? (message (tk-tile 1 '("oneway" "bool" "true"))) "tile 1" "\"oneway\"" "\"one-way\""))
+  (test-assert "\"One_Way\" too" (names? (message (tk-tile 1 '("One_Way" "bool" "true"))) "\"one-way\""))
+  (test-assert "\"colides\" (one letter dropped)" (names? (message (tk-tile 0 '("colides" "bool" "false"))) "\"collides\""))
+  (test-assert "\"Kind\"" (names? (message (tk-tile 2 '("Kind" "string" "lava"))) "\"kind\""))
+  (test-assert "one-way as a string: the expected type is named"
+               (names? (message (tk-tile 1 '("one-way" "string" "true"))) "\"one-way\"" "bool" "string"))
+  (test-assert "kind as an int" (names? (message (tk-tile 1 '("kind" "int" "3"))) "\"kind\"" "string"))
+  (test "a property of the game's own, not like any of the table's, loads" 'lava
+        (begin (tk-tmx tk-path (tk-tile 0 '("damage" "int" "3") '("kind" "string" "lava")))
+               (tilemap-kind (load-tilemap tk-path) 0 0))))
+
+(delete-file* tk-path)
