@@ -44,8 +44,9 @@ WEB_LDFLAGS = -O2 -sALLOW_MEMORY_GROWTH=1 -sFORCE_FILESYSTEM=1 -lidbfs.js \
 
 WEB_OBJS := $(patsubst %,$(WEB)/obj/downstroke.%.o,$(MODULES))
 
-.PHONY: web web-deps wasm32-check
+.PHONY: web web-deps wasm32-check web-test
 web-deps: deps
+	@sh tools/install-deps.sh web
 	@sh tools/web-deps.sh >/dev/null
 
 # A module's C: translated from its source once its native build (and so
@@ -71,7 +72,7 @@ web: libs assets web-deps $(WEB)/libdownstroke.a
 	$(EMCC) $(WEB_OUT)/game.o $(WEB)/libdownstroke.a $(patsubst %,$(WEB_DEPS)/lib/lib%.a,$(WEB_LIBS)) \
 	  $(WEB_LDFLAGS) $(foreach a,$(abspath $(ASSETS)),--preload-file $(a)@$(patsubst $(WEB_ROOT)%,%,$(a))$(if $(filter $(WEB_ROOT),$(a)),/)) \
 	  -o $(WEB_OUT)/index.html
-	@rm -f $(WEB_OUT)/game.c $(WEB_OUT)/game.o
+	@rm -f $(WEB_OUT)/game.c $(WEB_OUT)/game.o $(WEB_OUT)/game.link
 	@echo "web: $(WEB_OUT)/index.html (serve the folder: python3 -m http.server -d $(WEB_OUT))"
 
 # The suites that exercise every place where a value may pass 2^30, run
@@ -79,3 +80,19 @@ web: libs assets web-deps $(WEB)/libdownstroke.a
 WASM32_SUITES ?= util tilemap tmx layers escape broadphase physics
 wasm32-check: libs examples assets web-deps $(WEB)/libdownstroke.a
 	sh tools/wasm32-check.sh $(WEB_DEPS) $(WASM32_SUITES)
+
+# The browser tests (tools/web-test.py): the platformer and the shmup run a
+# scripted input in headless Chromium and their last frame must match the
+# native headless run's; a save must survive a reload. The demos' pages
+# carry tests/web/ (the input scripts) beside demo/.
+WEB_SHOTS := $(WEB)/native
+web-test: libs assets web-deps $(WEB)/libdownstroke.a
+	$(MAKE) --no-print-directory web GAME=demo/platformer.scm ASSETS="demo tests/web"
+	$(MAKE) --no-print-directory web GAME=demo/shmup.scm ASSETS="demo tests/web"
+	$(MAKE) --no-print-directory web GAME=tests/web/save-game.scm
+	@mkdir -p $(WEB_SHOTS)
+	$(HEADLESS) bin/demo-platformer --headless --frames 240 --script tests/web/platformer-input.scm \
+	  --screenshot $(WEB_SHOTS)/platformer.png > /dev/null
+	$(HEADLESS) bin/demo-shmup --headless --frames 150 --script tests/web/shmup-input.scm \
+	  --screenshot $(WEB_SHOTS)/shmup.png > /dev/null
+	/usr/bin/python3 tools/web-test.py $(WEB) $(WEB_SHOTS)
