@@ -23,7 +23,7 @@ library only.
 import base64, functools, http.server, json, os, shutil, struct, subprocess
 import sys, tempfile, threading, time, zlib
 
-MAX_DIFF = 48          # a channel's difference still counted as equal
+MAX_DIFF = 16          # a channel's difference still counted as equal
 MAX_OFF = 0.005        # the share of pixels that may differ more
 DEMOS = [("platformer", 240), ("shmup", 150)]
 

@@ -22,6 +22,11 @@ WEB_OUT    = $(WEB)/$(WEB_NAME)
 WEB_GAME   = $(abspath $(GAME))
 WEB_ROOT   = $(if $(filter $(CURDIR)/%,$(WEB_GAME)),$(CURDIR),$(patsubst %/,%,$(dir $(WEB_GAME))))
 ASSETS    ?= $(patsubst %/,%,$(dir $(WEB_GAME)))
+# More files, as emscripten's --preload-file takes them: HOST-PATH@PAGE-PATH.
+# The demos draw their text with Debian's DejaVu font, read from its system
+# path, so their pages carry it there.
+DEMO_FONT := /usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf
+WEB_PRELOAD ?= $(if $(filter $(CURDIR)/demo/%,$(WEB_GAME)),$(DEMO_FONT)@$(DEMO_FONT))
 # The libraries' folder; asking web-deps.sh costs a few apt-cache calls, so
 # only the web targets do it.
 ifneq ($(filter web% wasm32-check test,$(MAKECMDGOALS)),)
@@ -71,6 +76,7 @@ web: libs assets web-deps $(WEB)/libdownstroke.a
 	$(EMCC) $(WEB_CFLAGS) -c $(WEB_OUT)/game.c -o $(WEB_OUT)/game.o
 	$(EMCC) $(WEB_OUT)/game.o $(WEB)/libdownstroke.a $(patsubst %,$(WEB_DEPS)/lib/lib%.a,$(WEB_LIBS)) \
 	  $(WEB_LDFLAGS) $(foreach a,$(abspath $(ASSETS)),--preload-file $(a)@$(patsubst $(WEB_ROOT)%,%,$(a))$(if $(filter $(WEB_ROOT),$(a)),/)) \
+	  $(foreach f,$(WEB_PRELOAD),--preload-file $(f)) \
 	  -o $(WEB_OUT)/index.html
 	@rm -f $(WEB_OUT)/game.c $(WEB_OUT)/game.o $(WEB_OUT)/game.link
 	@echo "web: $(WEB_OUT)/index.html (serve the folder: python3 -m http.server -d $(WEB_OUT))"
