@@ -14,7 +14,7 @@ mkdir -p "$out"
 export NODE_PATH=${NODE_PATH:-/usr/share/nodejs}
 CFLAGS="-O1 -fno-strict-aliasing -fwrapv -DHAVE_CHICKEN_CONFIG_H -DC_ENABLE_PTABLES
   -I$deps/include/chicken -I$deps/include -I$top -w"
-LIBS="$top/build/web/libdownstroke.a"
+LIBS="${WASM32_LIB:-$top/build/web/libdownstroke.a}"
 for l in SDL2_ttf freetype SDL2_image SDL2_mixer SDL2 expat zstd z chicken; do
   LIBS="$LIBS $deps/lib/lib$l.a"
 done

@@ -20,7 +20,9 @@ export NODE_PATH=${NODE_PATH:-/usr/share/nodejs}
 say() { echo "web-deps: $*" >&2; }
 die() { say "$*"; exit 1; }
 
-command -v emcc >/dev/null || die "emcc is missing (make web-deps installs Debian's emscripten)"
+# Debian's emscripten (and the rest make web needs), when missing.
+command -v emcc >/dev/null || sh "$HERE/install-deps.sh" web >&2 ||
+  die "emcc is missing and could not be installed (tools/install-deps.sh web)"
 
 # Debian's source packages need a deb-src entry for the archive the machine
 # installs from; add one beside its deb entry when apt knows no source.

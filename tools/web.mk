@@ -29,7 +29,7 @@ DEMO_FONT := /usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf
 WEB_PRELOAD ?= $(if $(filter $(CURDIR)/demo/%,$(WEB_GAME)),$(DEMO_FONT)@$(DEMO_FONT))
 # The libraries' folder; asking web-deps.sh costs a few apt-cache calls, so
 # only the web targets do it.
-ifneq ($(filter web% wasm32-check test,$(MAKECMDGOALS)),)
+ifneq ($(filter web% wasm32-check,$(MAKECMDGOALS)),)
 WEB_DEPS  := $(shell sh tools/web-deps.sh --key)
 endif
 EMCC       = NODE_PATH=/usr/share/nodejs emcc
@@ -83,7 +83,7 @@ web: libs assets web-deps $(WEB)/libdownstroke.a
 
 # The suites that exercise every place where a value may pass 2^30, run
 # where fixnums are 31 bits wide (wasm32, under node): tools/wasm32-check.sh.
-WASM32_SUITES ?= util tilemap tmx layers escape broadphase physics
+WASM32_SUITES ?= util tilemap tmx decode json broadphase swept pipeline
 wasm32-check: libs examples assets web-deps $(WEB)/libdownstroke.a
 	sh tools/wasm32-check.sh $(WEB_DEPS) $(WASM32_SUITES)
 
