@@ -12,8 +12,10 @@ through the browser's main loop, drawing with WebGL, and a screenshot of
 its last frame; that PNG, read out of the page's file system, must match
 the native one (same size, every channel of at most MAX_OFF of the pixels
 off by more than MAX_DIFF: the simulation is exact, only the drawing of a
-different renderer may differ). Then the save page is loaded twice in one
-browser profile: the second load must read what the first saved.
+different renderer may differ). A key sent to the platformer's page
+(Escape, the quit action) must end its run. Then the save page is loaded
+twice in one browser profile: the second load must read what the first
+saved.
 
 Chromium is driven through its DevTools protocol over a pipe
 (--remote-debugging-pipe); the pages are served from 127.0.0.1. Prints
@@ -216,11 +218,25 @@ def main():
                 diff = compare(data, f.read())
             check(diff is None, "%s: frame %d matches the native headless run's" % (name, frames), diff or "")
 
+        # a key sent to the page reaches the game: Escape (the quit action)
+        # ends the platformer's run, and with it the browser's main loop
+        browser.open("%s/platformer/index.html" % base)
+        frames = "(typeof Browser !== 'undefined' && Browser.mainLoop.currentFrameNumber) || 0"
+        browser.wait(frames + " >= 10", 60)
+        n0 = browser.js(frames); time.sleep(1); n1 = browser.js(frames)
+        key = dict(key="Escape", code="Escape", windowsVirtualKeyCode=27, nativeVirtualKeyCode=27)
+        browser.js("document.getElementById('canvas').focus()")
+        browser.call("Input.dispatchKeyEvent", session=True, type="keyDown", **key)
+        time.sleep(0.5)
+        browser.call("Input.dispatchKeyEvent", session=True, type="keyUp", **key)
+        time.sleep(1); n2 = browser.js(frames); time.sleep(1); n3 = browser.js(frames)
+        check(n1 > n0 and n3 == n2, "the Escape key quits the platformer's run in the page",
+              "main loop passes %s, %s before the key, %s, %s after" % (n0, n1, n2, n3))
+
         # the save page twice, in one profile
         seen = []
         for load in range(2):
             browser.open("%s/save-game/index.html" % base)
-            line = browser.wait("(function(){return null})()", 0) or None
             end = time.time() + 60
             while time.time() < end:
                 lines = [l for l in browser.console() if l.startswith("web-save: saved")]
