@@ -12,8 +12,9 @@ through the browser's main loop, drawing with WebGL, and a screenshot of
 its last frame; that PNG, read out of the page's file system, must match
 the native one (same size, every channel of at most MAX_OFF of the pixels
 off by more than MAX_DIFF: the simulation is exact, only the drawing of a
-different renderer may differ). A key sent to the platformer's page
-(Escape, the quit action) must end its run. Then the save page is loaded
+different renderer may differ). The platformer's page must have opened
+its sound (a running Web Audio context), and a key sent to it (Escape,
+the quit action) must end its run. Then the save page is loaded
 twice in one browser profile: the second load must read what the first
 saved.
 
@@ -224,6 +225,12 @@ def main():
         frames = "(typeof Browser !== 'undefined' && Browser.mainLoop.currentFrameNumber) || 0"
         browser.wait(frames + " >= 10", 60)
         n0 = browser.js(frames); time.sleep(1); n1 = browser.js(frames)
+        # its sound: SDL's Web Audio context, opened by init-audio! (this
+        # Chromium lets a page play without a click)
+        audio = browser.js("Module.SDL2 && Module.SDL2.audioContext ? "
+                           "Module.SDL2.audioContext.state + ' ' + Module.SDL2.audioContext.sampleRate : null")
+        check(audio == "running 44100", "the platformer's page plays sound (Web Audio at 44100 Hz)",
+              "audio context: %s" % audio)
         key = dict(key="Escape", code="Escape", windowsVirtualKeyCode=27, nativeVirtualKeyCode=27)
         browser.js("document.getElementById('canvas').focus()")
         browser.call("Input.dispatchKeyEvent", session=True, type="keyDown", **key)
