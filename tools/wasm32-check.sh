@@ -23,9 +23,11 @@ passed=0; failed=0; bad=""
 for name in "$@"; do
   file=$(ls "$top"/*/tests/"$name"-test.scm "$top"/tests/"$name"-test.scm 2>/dev/null | head -1)
   [ -n "$file" ] || { echo "wasm32-check: no suite $name" >&2; exit 2; }
-  # the harness, the suite, and its closing count, as tests/suite.scm does
+  # the harness, the suite, and its closing count, with what tests/suite.scm
+  # imports for the suites it loads
   cat > "$out/$name.scm" <<EOF
 (include "$top/tests/harness.scm")
+(import (downstroke test) (chicken format) (chicken process-context posix))
 (include "$file")
 (test-exit)
 EOF
