@@ -61,6 +61,8 @@ $(WEB)/obj/downstroke.%.c: $(BUILD)/downstroke.%.so
 	$(CSC) -t $(SOURCE_$*) -static -unit downstroke.$* -feature downstroke-web \
 	  $(filter-out -L -C -l% -I% -D%,$(FLAGS_$*)) -I$(CURDIR) -o $@
 
+# kept: make would otherwise delete them as intermediate files
+.PRECIOUS: $(WEB)/obj/%.c
 $(WEB)/obj/%.o: $(WEB)/obj/%.c tools/web.mk | web-deps
 	$(EMCC) $(WEB_CFLAGS) -c $< -o $@
 
