@@ -5,6 +5,7 @@
 #   make demo    install what is missing, build, run the platformer demo
 #   make bench   the benchmark scenes of docs/performance.org (never part of test)
 #   make screenshots  the demos' pictures in docs/images/
+#   make web     the platformer (or GAME=path/to/game.scm) for the browser, in build/web/
 # Each module foo.scm becomes build/downstroke.foo.so plus its import library,
 # exactly the files `chicken-install` would install.
 
@@ -24,6 +25,9 @@ $(BUILD)/graph.mk: downstroke.egg tools/egg-graph.scm | deps
 	csi -q -s tools/egg-graph.scm downstroke.egg > $@.tmp && mv $@.tmp $@
 
 LIBS := $(patsubst %,$(BUILD)/downstroke.%.so,$(MODULES))
+
+# make web: the browser build (tools/web.mk).
+include tools/web.mk
 
 # Compiled modules are found in build/ first, then in CHICKEN's own repository
 # (asked with CHICKEN_INSTALL_REPOSITORY unset, which would otherwise name

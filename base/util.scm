@@ -34,7 +34,7 @@
 
   (import scheme (chicken base) (chicken fixnum) (chicken keyword)
           (only srfi-4 f64vector f64vector->blob/shared
-                blob->u32vector/shared u32vector-ref))
+                blob->u16vector/shared u16vector-ref))
 
   ;;; ------------------------------------------------------------------
   ;;; Lists
@@ -255,10 +255,12 @@
             h
             (loop (fx+ i 1) (mix h (char->integer (string-ref s i))))))))
 
-  ;; Exact integers of any size: fold the value in 24-bit chunks.
+  ;; Exact integers of any size: fold the value in 24-bit chunks. A fixnum
+  ;; folds its bits from 28 and 56 up; the second shift is two of 28, since
+  ;; a shift by 56 is undefined where fixnums are 31 bits wide (wasm32).
   (define (integer-hash n)
     (if (fixnum? n)
-        (fxand (fxxor n (fxxor (fxshr n 28) (fxshr n 56))) hash-mask)
+        (fxand (fxxor n (let ((high (fxshr n 28))) (fxxor high (fxshr high 28)))) hash-mask)
         (let loop ((m (abs n)) (h (if (negative? n) 7 3)))
           (if (zero? m)
               h
@@ -267,14 +269,17 @@
 
   ;; A flonum is hashed by its IEEE bits. eqv? (and so equal?) tells 0.0 from
   ;; -0.0, whose bits differ; all NaNs share one hash, since NaN bit patterns
-  ;; vary and NaN keys can never be found by value anyway.
+  ;; vary and NaN keys can never be found by value anyway. The bits are read
+  ;; as four 16-bit words, each a fixnum on every platform (a 32-bit word may
+  ;; not be one where fixnums are 31 bits wide).
   (define (flonum-hash x)
     (if (not (= x x))
         17
-        (let ((words (blob->u32vector/shared
+        (let ((words (blob->u16vector/shared
                       (f64vector->blob/shared (f64vector x)))))
-          (let ((lo (u32vector-ref words 0)) (hi (u32vector-ref words 1)))
-            (mix (mix (mix (mix 11 lo) (fxshr lo 28)) hi) (fxshr hi 28))))))
+          (mix (mix (mix (mix 11 (u16vector-ref words 0)) (u16vector-ref words 1))
+                    (u16vector-ref words 2))
+               (u16vector-ref words 3)))))
 
   (define (number-hash x)
     (cond ((fixnum? x) (integer-hash x))

@@ -122,7 +122,11 @@
   (define flag-diagonal #x20000000)
   (define flag-hex-120 #x10000000)
 
-  (define (cell-gid cell) (bitwise-and cell gid-mask))
+  ;; A cell is a 32-bit word: with a flip flag from bit 30 up it is a bignum
+  ;; where fixnums are 31 bits wide (wasm32), so only a fixnum cell takes
+  ;; fxand.
+  (define (cell-gid cell)
+    (if (fixnum? cell) (fxand cell gid-mask) (bitwise-and cell gid-mask)))
   (define (cell-flipped-horizontally? cell) (not (zero? (bitwise-and cell flag-horizontal))))
   (define (cell-flipped-vertically? cell) (not (zero? (bitwise-and cell flag-vertical))))
   (define (cell-flipped-diagonally? cell) (not (zero? (bitwise-and cell flag-diagonal))))
@@ -544,7 +548,7 @@
              (if (or rules (layer-one-way? layer))
                  (let ((all? (layer-one-way? layer)))
                    (do ((i 0 (fx+ i 1))) ((fx= i n))
-                     (let ((g (fxand (u32vector-ref data i) gid-mask)))
+                     (let ((g (cell-gid (u32vector-ref data i))))
                        (unless (fx= 0 g)
                          (let ((rule (and rules (hash-table-ref/default rules g #f))))
                            (cond ((and rule (eq? (vector-ref rule 0) 'no)))
@@ -552,7 +556,7 @@
                                   (u8vector-set! grid i 1))
                                  ((fx= 0 (u8vector-ref grid i)) (u8vector-set! grid i 2))))))))
                  (do ((i 0 (fx+ i 1))) ((fx= i n))
-                   (unless (fx= 0 (fxand (u32vector-ref data i) gid-mask))
+                   (unless (fx= 0 (cell-gid (u32vector-ref data i)))
                      (u8vector-set! grid i 1)))))))
        layers)
       grid))
@@ -768,7 +772,7 @@
 
   ;; The tile id (flag-free gid) at a cell; 0 when empty or outside the map.
   (define (tilemap-tile-at tm col row #!optional (which 0))
-    (fxand (cell-ref 'tilemap-tile-at tm col row which) gid-mask))
+    (cell-gid (cell-ref 'tilemap-tile-at tm col row which)))
 
   ;; The flip flags of a cell, as cell-flags gives them.
   (define (tilemap-flags-at tm col row #!optional (which 0))

@@ -39,9 +39,9 @@
 (define characters
   (append
    (list (make 'torch #:x 16 #:y 160) (make 'torch #:x 288 #:y 160)
-         (make 'hero #:x 40 #:y 176 #:min-x 40 #:max-x 150)
-         (make 'hero #:x 250 #:y 176 #:min-x 170 #:max-x 250 #:dir -1)
-         (make 'blob #:x 80 #:y 176 #:min-x 60 #:max-x 240)
+         (make 'hero #:x 40 #:y 176 #:track-left 40 #:track-right 150)
+         (make 'hero #:x 250 #:y 176 #:track-left 170 #:track-right 250 #:dir -1)
+         (make 'blob #:x 80 #:y 176 #:track-left 60 #:track-right 240)
          (make 'bird #:x 0 #:y 84 #:vx 3/2)
          (make 'bird #:x 300 #:y 116 #:vx -1 #:facing -1))
    ;; five coins, each starting on a later frame of the spin
@@ -54,7 +54,7 @@
     (cond ((> pause 0)
            (let ((e (entity-set (entity-set e #:pause (- pause 1)) #:vx 0)))
              (set-animation (if (= pause 1) (entity-set e #:dir (- dir)) e) 'idle)))
-          ((if (> dir 0) (>= x (entity-ref e #:max-x)) (<= x (entity-ref e #:min-x)))
+          ((if (> dir 0) (>= x (entity-ref e #:track-right)) (<= x (entity-ref e #:track-left)))
            (set-animation (entity-set (entity-set e #:pause (entity-ref e #:rest)) #:vx 0) 'idle))
           (else
            (let ((moving (car (entity-ref e #:animations))))   ; the first: walk or hop

@@ -83,7 +83,7 @@
 ;; 4, a plank along the top of a 16 x 16 tile), stretched to its 48 px.
 (define platform
   (list #:type 'platform #:x 240 #:y 192 #:width 48 #:height 8 #:vx 1
-        #:solid? #t #:immovable? #t #:min-x 240 #:max-x 320
+        #:solid? #t #:immovable? #t #:track-left 240 #:track-right 320
         #:tileset "tiles" #:tile-id 4 #:scale-x 3 #:origin-x 0 #:origin-y 0
         #:color '(196 146 84)))
 
@@ -160,8 +160,8 @@
 ;; The platform turns around at the ends of its track.
 (define (move-platform p)
   (let ((x (entity-ref p #:x)))
-    (cond ((<= x (entity-ref p #:min-x)) (entity-set p #:vx 1))
-          ((>= x (entity-ref p #:max-x)) (entity-set p #:vx -1))
+    (cond ((<= x (entity-ref p #:track-left)) (entity-set p #:vx 1))
+          ((>= x (entity-ref p #:track-right)) (entity-set p #:vx -1))
           (else p))))
 
 ;; The level, fresh: the map, its coins spinning, 3 lives, no coin taken.

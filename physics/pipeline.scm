@@ -55,6 +55,7 @@
           (cons 'tweens            (per-entity step-tweens))
           (cons 'acceleration      (per-entity apply-acceleration))
           (cons 'gravity           (per-entity apply-gravity))
+          (cons 'controls          (per-entity apply-body-controls))
           (cons 'velocity-x        (per-entity apply-velocity-x))
           (cons 'tile-collisions-x (per-entity resolve-tile-collisions-x))
           (cons 'velocity-y        (per-entity apply-velocity-y))
@@ -62,6 +63,7 @@
           (cons 'on-solid          (per-entity detect-on-solid))
           (cons 'entity-collisions (whole-list resolve-entity-collisions))
           (cons 'groups            (whole-list sync-groups))
+          (cons 'contacts          (per-entity detect-contacts))
           (cons 'animation         (per-entity apply-animation))
           (cons 'particles         (per-entity step-particles))))
 

@@ -38,7 +38,8 @@
           (downstroke game) (downstroke level) (downstroke pipeline)
           (downstroke scene) (downstroke sdl2) (downstroke renderer) (downstroke input)
           (downstroke repl) (downstroke camera) (downstroke save) (downstroke run-options)
-          (only (downstroke timer) step-scene-timers))
+          (only (downstroke timer) step-scene-timers)
+          (only (chicken platform) return-to-host))
 
   ;;; ------------------------------------------------------------------
   ;;; Input, window and pointer settings a game changes while it runs.
@@ -108,7 +109,8 @@
   (define (game-save-directory game) (pref-path (game-org game) (game-app game)))
 
   (define (game-save! game name value)
-    (save-data-write! (game-save-directory game) name value))
+    (save-data-write! (game-save-directory game) name value)
+    (web-storage-sync!))
 
   (define (game-load game name #!optional (default no-default))
     (if (eq? default no-default)
@@ -541,31 +543,88 @@
     (let ((fd (game-frame-delay game)))
       (define (draw! shot)
         (guarded repl "the render: hook or drawing" (lambda () (render-frame! game renderer shot watch))))
-      (let loop ((done 0) (acc 0) (last (get-ticks)))
-        (when repl (repl-poll! (cdr repl)))
-        (cond ((and frames (>= done frames)) done)
-              (fast?
-               (if (run-frame! game script (input-poll-events!) rec-box repl watch)
-                   done
-                   (begin (draw! #f)
-                          (loop (+ done 1) 0 last))))
-              (else
-               (let* ((now (get-ticks))
-                      (acc (+ acc (- now last)))
-                      (due (quotient acc fd))
-                      (n (min due max-catch-up (if frames (- frames done) due)))
-                      (acc (if (> due max-catch-up) (remainder acc fd) (- acc (* n fd)))))
-                 (if (= n 0)
-                     (begin (delay! (max 1 (- fd acc)))
-                            (loop done acc now))
-                     (let batch ((i 0) (events (input-poll-events!)))
-                       (cond ((= i n)
-                              (draw! (and shot-box
-                                          (or (not frames) (>= (+ done n) frames))
-                                          shot-box))
-                              (loop (+ done n) acc now))
-                             ((run-frame! game script events rec-box repl watch) (+ done i))
-                             (else (batch (+ i 1) '())))))))))))
+      ;; One pass of the real-time loop at `now` (ms), `acc` ms being due
+      ;; since `last`: the frames due run, then one draw when any ran.
+      ;; Returns the frames run in all, the ms still due, and whether the
+      ;; run has ended (frames: reached, or quit).
+      (define (pass done acc last now)
+        (let* ((acc (+ acc (- now last)))
+               (due (quotient acc fd))
+               (n (min due max-catch-up (if frames (- frames done) due)))
+               (acc (if (> due max-catch-up) (remainder acc fd) (- acc (* n fd)))))
+          (if (= n 0)
+              (values done acc #f)
+              (let batch ((i 0) (events (input-poll-events!)))
+                (cond ((= i n)
+                       (draw! (and shot-box
+                                   (or (not frames) (>= (+ done n) frames))
+                                   shot-box))
+                       (values (+ done n) acc (and frames (>= (+ done n) frames) #t)))
+                      ((run-frame! game script events rec-box repl watch) (values (+ done i) acc #t))
+                      (else (batch (+ i 1) '())))))))
+      (cond ((and frames (>= 0 frames)) 0)
+            ((and (not fast?) (web-build?))
+             ;; the browser calls one pass per animation frame
+             (let ((done 0) (acc 0) (last (get-ticks)))
+               (web-main-loop!
+                (lambda ()
+                  (when repl (repl-poll! (cdr repl)))
+                  (let ((now (get-ticks)))
+                    (receive (d a end?) (pass done acc last now)
+                      (set! done d) (set! acc a) (set! last now)
+                      (and end? done)))))))
+            (else
+             (let loop ((done 0) (acc 0) (last (get-ticks)))
+               (when repl (repl-poll! (cdr repl)))
+               (cond ((and frames (>= done frames)) done)
+                     (fast?
+                      (if (run-frame! game script (input-poll-events!) rec-box repl watch)
+                          done
+                          (begin (draw! #f)
+                                 (loop (+ done 1) 0 last))))
+                     (else
+                      (let ((now (get-ticks)))
+                        (receive (d a end?) (pass done acc last now)
+                          (cond (end? d)
+                                ((= d done) (delay! (max 1 (- fd a))) (loop d a now))
+                                (else (loop d a now))))))))))))
+
+  ;;; The browser build (make web, which compiles with the feature
+  ;;; downstroke-web): a page must get its thread back after every pass of
+  ;;; the loop, so game-run! hands the browser one pass to call on each
+  ;;; animation frame (emscripten_set_main_loop) and returns to the page.
+  ;;; When a pass ends the run (a pass returns the frames run instead of
+  ;;; #f) the loop is cancelled and game-run! goes on from where it left,
+  ;;; through the continuation kept for it, so what follows game-run! in
+  ;;; the game runs as it does natively. The save directory lies in the
+  ;;; browser's storage (IndexedDB), written back after each game-save!.
+  ;;; docs/guide.org, "Shipping to the web".
+  (cond-expand
+    (downstroke-web
+     (foreign-declare "#include <emscripten.h>")
+     (define (web-build?) #t)
+     (define web-pass void)
+     (define-external (downstroke_web_frame) void (web-pass))
+     (define (web-main-loop! pass)
+       (call/cc
+        (lambda (k)
+          (set! web-pass
+            (lambda ()
+              (let ((ran (pass)))
+                (when ran
+                  (set! web-pass void)
+                  ((foreign-lambda* void () "emscripten_cancel_main_loop();"))
+                  (k ran)))))
+          ((foreign-lambda* void () "emscripten_set_main_loop(downstroke_web_frame, 0, 0);"))
+          (return-to-host))))
+     (define (web-storage-sync!)
+       ((foreign-lambda* void ()
+          "EM_ASM(FS.syncfs(false, function (e) {
+             if (e) console.error('downstroke: saving to the browser storage failed', e); }));"))))
+    (else
+     (define (web-build?) #f)
+     (define (web-main-loop! pass) (void))
+     (define (web-storage-sync!) (void))))
 
   (define unset (list 'unset))
 

@@ -628,8 +628,14 @@
                                 (ctx-what ctx) cell count)))
               (let ((c (string-ref s i)))
                 (cond ((char-numeric? c)
-                       (let ((v (fx+ (fx* value 10) (fx- (char->integer c) 48))))
-                         (when (fx> v #xFFFFFFFF)
+                       ;; below 10^9 a cell is a fixnum on every platform;
+                       ;; past it (flip flags) generic arithmetic, since a
+                       ;; 32-bit word is no fixnum where fixnums are 31 bits
+                       (let* ((d (fx- (char->integer c) 48))
+                              (v (if (fx< value 100000000)
+                                     (fx+ (fx* value 10) d)
+                                     (+ (* value 10) d))))
+                         (when (and (fx>= value 100000000) (> v 4294967295))
                            (tmx-error (ctx-file ctx) "~a: csv cell ~a is larger than 32 bits"
                                       (ctx-what ctx) cell))
                          (loop (fx+ i 1) cell v (fx+ digits 1))))
@@ -915,7 +921,7 @@
                 (n (u32vector-length data)))
            (let loop ((i 0) (last-ok 0))
              (when (fx< i n)
-               (let ((g (fxand (u32vector-ref data i) gid-mask)))
+               (let ((g (cell-gid (u32vector-ref data i))))
                  (cond ((or (fx= g 0) (fx= g last-ok)) (loop (fx+ i 1) last-ok))
                        ((covered? g) (loop (fx+ i 1) g))
                        (else

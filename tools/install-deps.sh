@@ -5,6 +5,10 @@ set -e
 PACKAGES="chicken-bin libchicken-dev gcc pkg-config libsdl2-dev libsdl2-image-dev
 libsdl2-mixer-dev libsdl2-ttf-dev libexpat1-dev zlib1g-dev libzstd-dev
 fonts-dejavu-core xvfb xauth tiled"
+# `install-deps.sh web`: also what make web and its tests need (Debian's
+# emscripten, with node; chromium and python3 for the browser tests; zip for
+# a jam page).
+[ "$1" = "web" ] && PACKAGES="$PACKAGES emscripten nodejs chromium zip python3"
 
 missing=""
 for p in $PACKAGES; do

@@ -1,6 +1,6 @@
 ;;; Tests for (downstroke util): the SRFI 1 and SRFI 69 stand-ins.
 (import (downstroke test) (downstroke util)
-        scheme (chicken base) (chicken string) (chicken sort) (chicken keyword))
+        scheme (chicken base) (chicken string) (chicken sort) (chicken keyword) (only (chicken gc) gc))
 
 ;; Large enough that recursive implementations would grow the stack a lot.
 (define util-big 100000)
@@ -410,3 +410,26 @@
     (for-each (lambda (i) (hash-table-set! t (/ i 4.0) i)) (iota 20000))
     (test "20k flonum keys" 20000 (hash-table-count t))
     (test "flonum keys" 4001 (hash-table-ref t 1000.25))))
+
+;; Keys whose bits do not fit a 31-bit fixnum (wasm32, where make web's
+;; build runs these suites: make wasm32-check): negative flonums (sign bit
+;; 31 of the high word), integers past 2^30 and 2^62. Each is found again
+;; after collections have moved the table's objects, so no hash may depend
+;; on where a value lies in memory.
+(test-group "keys beyond 31-bit fixnums"
+  (let* ((keys (append (map (lambda (i) (- -0.5 (* i 1e10))) (iota 500))
+                       (map (lambda (i) (+ 1073741800 i)) (iota 50))
+                       (map (lambda (i) (- -1073741850 i)) (iota 50))
+                       (map (lambda (i) (+ (expt 2 62) i)) (iota 50))
+                       (list -0.0 0.0 1e308 -1e308 (expt 2 40) (- (expt 2 40)))))
+         (t (make-hash-table)))
+    (for-each (lambda (k) (hash-table-set! t k k)) keys)
+    (gc #t)
+    (test "all distinct keys stored" (length keys) (hash-table-count t))
+    (test "each key found after a major collection"
+          '() (filter (lambda (k) (not (eqv? k (hash-table-ref/default t k #f)))) keys))
+    (let ((strings (make-hash-table)))
+      (for-each (lambda (k) (hash-table-set! strings (list 'k k) #t)) keys)
+      (gc #t)
+      (test "equal? keys holding them found too"
+            '() (filter (lambda (k) (not (hash-table-ref/default strings (list 'k k) #f))) keys)))))

@@ -337,8 +337,8 @@
 ;; pipeline-failing-step names the step whose error contract-pipeline raises.
 (test-group "contract-steps: contract-pipeline's steps by name; pipeline-failing-step"
   (test "named as #:skip-pipelines names them"
-        '(frame-start tweens acceleration gravity velocity-x tile-collisions-x velocity-y
-          tile-collisions-y on-solid entity-collisions groups animation particles)
+        '(frame-start tweens acceleration gravity controls velocity-x tile-collisions-x velocity-y
+          tile-collisions-y on-solid entity-collisions groups contacts animation particles)
         (map car contract-steps))
   (let loop ((k 0) (different 0) (errors 0))
     (if (= k 60)
