@@ -104,6 +104,7 @@
         (downstroke sdl2) (downstroke scene) (downstroke input) (downstroke engine))
 (define args (command-line-arguments))
 (define mode (string->symbol (car args)))
+(define stage 0)
 (define (say g what) (receive (w h) (window-size (game-window g))
                        (printf \"~a ~ax~a fullscreen ~a~%\" what w h (window-fullscreen? (game-window g)))))
 (define game
@@ -119,20 +120,27 @@
              (let ((f (game-frame g)))
                (case mode
                  ((resize)
-                  (case f
-                    ((1) (window-size-set! (game-window g) 200 72))
-                    ((5) (push-mouse-motion-event! 82 15))
-                    ((6) (receive (x y) (game-mouse-position g) (printf \"mouse ~a ~a~%\" x y))
-                         (push-mouse-motion-event! 147 71))
-                    ((7) (receive (x y) (game-mouse-position g) (printf \"mouse ~a ~a~%\" x y))
-                         (say g \"resized\"))))
+                  ;; the X server takes its time to resize (seconds on a
+                  ;; loaded machine): the pointer moves once it has
+                  (receive (w h) (window-size (game-window g))
+                    (cond ((= f 1) (window-size-set! (game-window g) 200 72))
+                          ((and (= stage 0) (= w 200) (= h 72))
+                           (set! stage 1) (push-mouse-motion-event! 82 15))
+                          ((= stage 1)
+                           (set! stage 2)
+                           (receive (x y) (game-mouse-position g) (printf \"mouse ~a ~a~%\" x y))
+                           (push-mouse-motion-event! 147 71))
+                          ((= stage 2)
+                           (set! stage 3)
+                           (receive (x y) (game-mouse-position g) (printf \"mouse ~a ~a~%\" x y))
+                           (say g \"resized\")))))
                  ((toggle)
                   (case f
                     ((2) (push-key-event! 'key-down 'f11))
                     ((3) (push-key-event! 'key-up 'f11))
                     ((8) (say g \"f11\") (game-toggle-fullscreen! g))
                     ((14) (say g \"procedure\")))))))))
-(printf \"frames ~a~%\" (game-run! game headless?: #f frames: 16 screenshot: (cadr args)))
+(printf \"frames ~a~%\" (game-run! game headless?: #f frames: (if (eq? mode 'resize) 300 16) screenshot: (cadr args)))
 ")
 
 (define (modes-command mode)
