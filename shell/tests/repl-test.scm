@@ -485,6 +485,12 @@
                                     (if (and ended? (< n 20000000)) 0 1)))))))
             (file-read sent-in 1)
             (goes-on "while a client reads none of a large answer")
+            ;; Each poll serves the owner before that client, so an answer
+            ;; to the owner can come just before the game evaluates the
+            ;; client's request; had the client begun to read then, it
+            ;; would rightly get all of the answer. Two more round trips
+            ;; are two more polls: the request has been evaluated.
+            (test "the owner, twice more" '("3" "3") (list (gc-eval owner "(+ 1 2)") (gc-eval owner "(+ 1 2)")))
             (file-write told-out "t")
             (test "that client was dropped before its answer was all sent" 0 (rt-status pid))
             (for-each file-close (list told-in told-out sent-in sent-out))))
