@@ -105,6 +105,7 @@
 (define args (command-line-arguments))
 (define mode (string->symbol (car args)))
 (define stage 0)
+(define before #f)
 (define (say g what) (receive (w h) (window-size (game-window g))
                        (printf \"~a ~ax~a fullscreen ~a~%\" what w h (window-fullscreen? (game-window g)))))
 (define game
@@ -120,20 +121,26 @@
              (let ((f (game-frame g)))
                (case mode
                  ((resize)
-                  ;; the X server takes its time to resize (seconds on a
-                  ;; loaded machine): the pointer moves once it has
+                  ;; The X server takes its time to resize (seconds on a
+                  ;; loaded machine): the pointer moves once it has. A
+                  ;; pushed event is read at the next pass of the loop,
+                  ;; which may come frames later (a loaded machine runs
+                  ;; several frames a pass): a position is said once it
+                  ;; has changed.
                   (receive (w h) (window-size (game-window g))
-                    (cond ((= f 1) (window-size-set! (game-window g) 200 72))
-                          ((and (= stage 0) (= w 200) (= h 72))
-                           (set! stage 1) (push-mouse-motion-event! 82 15))
-                          ((= stage 1)
-                           (set! stage 2)
-                           (receive (x y) (game-mouse-position g) (printf \"mouse ~a ~a~%\" x y))
-                           (push-mouse-motion-event! 147 71))
-                          ((= stage 2)
-                           (set! stage 3)
-                           (receive (x y) (game-mouse-position g) (printf \"mouse ~a ~a~%\" x y))
-                           (say g \"resized\")))))
+                    (receive (x y) (game-mouse-position g)
+                      (let ((pointer (list x y)))
+                        (cond ((= f 1) (window-size-set! (game-window g) 200 72))
+                              ((and (= stage 0) (= w 200) (= h 72))
+                               (set! stage 1) (set! before pointer) (push-mouse-motion-event! 82 15))
+                              ((and (= stage 1) (not (equal? pointer before)))
+                               (set! stage 2) (set! before pointer)
+                               (printf \"mouse ~a ~a~%\" x y)
+                               (push-mouse-motion-event! 147 71))
+                              ((and (= stage 2) (not (equal? pointer before)))
+                               (set! stage 3)
+                               (printf \"mouse ~a ~a~%\" x y)
+                               (say g \"resized\")))))))
                  ((toggle)
                   (case f
                     ((2) (push-key-event! 'key-down 'f11))
