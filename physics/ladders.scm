@@ -14,8 +14,7 @@
 
   (import scheme (chicken base) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke map)
-          (downstroke body) (downstroke tuning) (downstroke tile-grid)
-          (downstroke tile-collisions))
+          (downstroke body) (downstroke tuning) (downstroke tile-grid))
 
   (foreign-declare "#include \"physics/body.h\"")
 
@@ -53,8 +52,9 @@
            (covered? (ladder-in-rows? tm col (span-first y th) (span-last y h th)))
            ;; a ladder cell just under its feet (its bottom on a grid line)
            (below? (let ((q (/ bottom th))) (and (integer? q) (tilemap-ladder? tm col (->integer q)))))
-           ;; a solid tile under its feet: the ground rule without one-way tiles
-           (floor? (lambda () (tile-ground? tm x y w h #t)))
+           ;; a solid tile under its feet in the ladder's column (the row
+           ;; one pixel below them, as for ground): the ladder's foot
+           (floor? (lambda () (tilemap-solid? tm col (cell-of (+ bottom 1) th))))
            (on? (cond (jump? #f)
                       (was? (and (or covered? below?) (not (and (> c 0) (floor?)))))
                       ((< c 0) covered?)

@@ -93,6 +93,9 @@
   (both "down on the top: grabs and climbs down through it"
         '((50 18 2 #t #f) (50 80 2 #t #t))
         (climber 50 16 1) 32 '(1 32))
+  (both "down with one foot on the ledge beside the top: the centre decides, it grabs (x 54 to 50)"
+        '((50 18 2 #t #f))
+        (climber 54 16 1) 1 '(1))
   (both "at the floor, still pressing down: lets go and stands"
         '((50 80 0 #f #t) (50 80 0 #f #t))
         (climber 50 16 1) 40 '(33 40))
