@@ -55,6 +55,7 @@
 (define enemy-walk 13) (define enemy-squashed 16) (define enemy-stretched 17)
 (define stomp-bounce -6)                ; the player's #:vy after a stomp
 (define squashed-frames 30)             ; how long a squashed enemy stays
+(define grace-frames 60)                ; no hurt for this long after a respawn
 
 ;; A coin of the map, as game-load-scene! made it (#:type coin, its box,
 ;; #:tile-id 21), made to spin.
@@ -158,11 +159,11 @@
                                         (cons #:duration 12)))
                #:anim-name 'walk))
 
-;; An enemy turns round when its side touches a wall (the tile step has
-;; stopped it, #:vx 0).
+;; An enemy turns round when its side touches a wall's tiles (the tile
+;; step has stopped it, #:vx 0).
 (define (move-enemy e)
-  (let ((vx (cond ((entity-touching? e 'left) 1)
-                  ((entity-touching? e 'right) -1)
+  (let ((vx (cond ((pair? (entity-touch-tiles e 'left)) 1)
+                  ((pair? (entity-touch-tiles e 'right)) -1)
                   (else (entity-ref e #:vx)))))
     (entity-set* e #:vx vx #:facing vx)))
 
@@ -176,7 +177,8 @@
 
 ;; The enemies the player met this frame, by the side it met them from
 ;; (entity-overlap-side): from above it stomps them and bounces up; from
-;; any other side it is hurt. Answers the new scene and whether it was hurt.
+;; any other side it is hurt, unless it has just respawned (#:grace).
+;; Answers the new scene and whether it was hurt.
 (define (stomp-enemies scene)
   (let* ((p (scene-find-tagged scene 'player))
          (met (foldr (lambda (e out)
@@ -189,7 +191,8 @@
                                         (cond ((memq e stomped) (squash e))
                                               ((and (eq? e p) (pair? stomped)) (entity-set e #:vy stomp-bounce))
                                               (else e))))
-            (not (= (length stomped) (length met))))))
+            (and (not (= (length stomped) (length met)))
+                 (<= (entity-ref p #:grace 0) 0)))))
 
 ;; Input becomes velocity; a jump is a one-frame impulse, only from the
 ;; ground or a ladder. Up and down are the climbing intent the ladder
@@ -210,6 +213,7 @@
            ;; top, climbing down comes first)
            (entity-set _ #:drop-through? (input-held? input 'down))
            (entity-set _ #:climb climb)
+           (entity-set _ #:grace (max 0 (- (entity-ref p #:grace 0) 1)))
            (entity-set _ #:vx (* dir walk-speed))
            (entity-set _ #:facing (if (zero? dir) (entity-ref p #:facing 1) dir))
            (set-animation _ (cond (climbing? (if (zero? climb) 'idle 'walk))
@@ -226,7 +230,7 @@
 (define (fallen? p) (> (entity-ref p #:y) 200))
 
 (define (respawn p)
-  (entity-set* p #:x start-x #:y start-y #:vy 0 #:climbing? #f))
+  (entity-set* p #:x start-x #:y start-y #:vy 0 #:climbing? #f #:grace grace-frames))
 
 ;; The platform turns around at the ends of its track.
 (define (move-platform p)
@@ -374,16 +378,16 @@
                                (scene-entities (game-scene game))))
         (camera (scene-camera (game-scene game))))
     (when (and p (pair? lift))
+      (printf "platformer: enemies ~a squashed ~a climbing ~a~%"
+              (length (filter-entities (lambda (e) (eq? (entity-type e) 'enemy)) (scene-entities (game-scene game))))
+              (length (filter-entities (lambda (e) (eq? (entity-type e) 'squashed)) (scene-entities (game-scene game))))
+              (entity-ref p #:climbing? #f))
       (printf "platformer: coins ~a left ~a sparkles ~a~%" (game-asset game 'coins)
               (length (scene-find-all-tagged (game-scene game) 'coin))
               (foldl (lambda (n e) (if (eq? (entity-type e) 'sparkles)
                                        (+ n (emitter-count (entity-ref e #:emitter)))
                                        n))
                      0 (scene-entities (game-scene game))))
-      (printf "platformer: enemies ~a squashed ~a climbing ~a~%"
-              (length (filter-entities (lambda (e) (eq? (entity-type e) 'enemy)) (scene-entities (game-scene game))))
-              (length (filter-entities (lambda (e) (eq? (entity-type e) 'squashed)) (scene-entities (game-scene game))))
-              (entity-ref p #:climbing? #f))
       (printf "platformer: player at (~a, ~a) on-ground ~a camera (~a, ~a) lift at ~a~%"
               (entity-ref p #:x) (entity-ref p #:y) (entity-ref p #:on-ground? #f)
               (camera-x camera) (camera-y camera) (floor (entity-ref (car lift) #:y))))))
