@@ -14,7 +14,7 @@
 ;;; scenes, frame after frame, and compares every entity.
 
 (module (downstroke pipeline)
-  (contract-pipeline engine-pipeline pipeline-failing-step contract-steps)
+  (contract-pipeline engine-pipeline pipeline-failing-step contract-steps engine-pipeline-steps)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign) (chicken condition)
           (downstroke scene) (downstroke physics) (downstroke tween)
@@ -216,6 +216,33 @@
                           (cut scene-map-entities <> (lambda (s e) (apply-animation s e dt))) _)
              (when-needed need-particles
                           (cut scene-map-entities <> (lambda (s e) (step-particles s e dt))) _))))
+
+;; The names (as in contract-steps) of the steps engine-pipeline runs on
+  ;; this scene as it is: the motion steps always (the motion pass), each
+  ;; other one only when some entity needs it, read from the same bits
+  ;; engine-pipeline decides by. A tween's on-complete may make more
+  ;; needed within the frame; with a tween, the climbing and controls
+  ;; steps are run anyway.
+  (define (engine-pipeline-steps scene)
+    (let* ((bits (pipeline-needs (scene-entities scene)))
+           (tweens? (needs? bits need-tweens)))
+      (let loop ((steps contract-steps) (out '()))
+        (if (null? steps)
+            (reverse out)
+            (let* ((name (caar steps))
+                   (run? (case name
+                           ((frame-start) (needs? bits need-start))
+                           ((tweens) tweens?)
+                           ((climbing) (or tweens? (needs? bits need-climbers)))
+                           ((controls) (or tweens? (needs? bits need-controls)))
+                           ((on-solid) (needs? bits need-ground))
+                           ((entity-collisions) (needs? bits need-pairs))
+                           ((groups) (needs? bits need-groups))
+                           ((contacts) (needs? bits need-contacts))
+                           ((animation) (needs? bits need-animation))
+                           ((particles) (needs? bits need-particles))
+                           (else #t))))      ; the motion pass
+              (loop (cdr steps) (if run? (cons name out) out)))))))
 
   ;; Tile ground detection may join the motion pass (one walk instead of
   ;; two) only when it reads nothing but the entity itself and the map:

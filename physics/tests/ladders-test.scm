@@ -125,4 +125,16 @@
                (s (engine-pipeline s 16)))
           (entity-touch-tiles (car (scene-entities s)) 'floor))))
 
+(test-group "a scene without a climber pays nothing for ladders"
+  (define walker (ld-ent #:x 50 #:y 80 #:width 12 #:height 16 #:gravity? #t #:climb -1 #:climbing? #t))
+  (test "the engine's fast path leaves the climbing step out of a scene with no #:climber?"
+        '(acceleration gravity velocity-x tile-collisions-x velocity-y tile-collisions-y on-solid)
+        (engine-pipeline-steps (make-scene tilemap: ld-map entities: (list walker))))
+  (test "and runs it in one with a climber" #t
+        (and (memq 'climbing (engine-pipeline-steps
+                              (make-scene tilemap: ld-map entities: (list walker (climber 50 80 -1)))))
+             #t))
+  (test "#:climbing? without #:climber? is nothing: gravity pulls, no ladder holds" '((50 80 0 #t #t))
+        (ld-run walker 1 engine-pipeline)))
+
 (test-exit)
