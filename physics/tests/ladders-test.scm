@@ -106,6 +106,14 @@
         '((98 64 2 #t #f) (98 65 1 #f #f))
         (climber 98 40 1 #:climbing? #t) 13 '(12 13)))
 
+(test-group "tune-physics! climb-speed:"
+  (tune-physics! climb-speed: 4)
+  (both "a climber without #:climb-speed climbs at the tuned 4 px a frame" '((50 76 -4 #t #f))
+        (climber 50 80 -1) 1 '(1))
+  (tune-physics! climb-speed: 2)
+  (test-error "a negative one is an error" (tune-physics! climb-speed: -1))
+  (test "and changes nothing" 2 *climb-speed*))
+
 (test-group "letting go"
   (both "holding on with no intent: no gravity, no motion"
         '((50 50 0 #t #f))
