@@ -27,8 +27,8 @@
                  ladders: '(3)))
 
 ;; (x y vy climbing? on-ground?) of the first entity after each of n frames.
-(define (ld-run e n pipeline)
-  (let loop ((s (make-scene tilemap: ld-map entities: (list e))) (k 0) (out '()))
+(define (ld-run e n pipeline #!optional (mode 'swept))
+  (let loop ((s (make-scene tilemap: ld-map entities: (list e) collision-mode: mode)) (k 0) (out '()))
     (if (= k n)
         (reverse out)
         (let* ((s (pipeline s 16)) (e (car (scene-entities s))))
@@ -36,11 +36,14 @@
                 (cons (map (lambda (key) (entity-ref e key #f)) '(#:x #:y #:vy #:climbing? #:on-ground?))
                       out))))))
 
-;; The frames numbered in `at` (from 1) of an n-frame run, by both pipelines.
+;; The frames numbered in `at` (from 1) of an n-frame run, by both
+;; pipelines, in both collision modes.
 (define (both name expected e n at)
   (define (pick run) (map (lambda (k) (list-ref run (- k 1))) at))
-  (test (string-append name " (engine)") expected (pick (ld-run e n engine-pipeline)))
-  (test (string-append name " (readable steps)") expected (pick (ld-run e n contract-pipeline))))
+  (for-each (lambda (mode)
+              (test (sprintf "~a (engine, ~a)" name mode) expected (pick (ld-run e n engine-pipeline mode)))
+              (test (sprintf "~a (readable steps, ~a)" name mode) expected (pick (ld-run e n contract-pipeline mode))))
+            '(swept discrete)))
 
 ;; A 12 x 16 climber, its own climb intent; `more` keys set over it.
 (define (climber x y climb . more)
