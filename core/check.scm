@@ -31,6 +31,7 @@
       #:gravity? #:on-ground? #:solid? #:immovable? #:one-way? #:drop-through?
       #:frame-start #:skip-pipelines #:collision-mode #:tween #:contacts? #:contacts
       #:drag #:air-drag #:max-vx #:max-vy #:bounce
+      #:climber? #:climb #:climb-speed #:climbing?
       #:group-id #:group-origin? #:group-local-x #:group-local-y
       #:animations #:anim-name #:anim-frame #:anim-tick #:anim-duration #:anim-finished? #:anim-event
       #:tile-id #:color #:facing
@@ -39,13 +40,13 @@
       #:angle #:scale #:scale-x #:scale-y #:alpha #:tint #:tileset #:z #:emitter))
 
   (define pipeline-steps
-    '(tweens frame-start acceleration gravity controls velocity-x tile-collisions-x velocity-y
+    '(tweens frame-start climbing acceleration gravity controls velocity-x tile-collisions-x velocity-y
       tile-collisions-y on-solid entity-collisions contacts animation particles))
 
   (define number-keys '(#:x #:y #:width #:height #:vx #:vy #:ay
                         #:sprite-offset-x #:sprite-offset-y #:origin-x #:origin-y
                         #:angle #:scale #:scale-x #:scale-y #:alpha #:z
-                        #:drag #:air-drag #:max-vx #:max-vy #:bounce))
+                        #:drag #:air-drag #:max-vx #:max-vy #:bounce #:climb #:climb-speed))
 
   (define (kw k) (sprintf "~s" k))
 

@@ -21,6 +21,11 @@
 ;;; nothing to the grid (tile-property-table lists the names read on tiles).
 ;;; The grid holds 0 (empty), 1 (solid) or 2 (one-way). A second grid, made
 ;;; only when some tile has a `kind`, holds each cell's kind (tilemap-kind).
+;;; A ladder tile (the bool property `ladder`, on the tile or its layer) is
+;;; not solid; the ladder cells are a third grid (tilemap-ladder?), made
+;;; only when the map has one, and the top cell of each ladder (no ladder
+;;; above it) is one-way in the solid grid, so that every body can stand
+;;; on it (docs/physics.org, "Ladders").
 ;;;
 ;;; Which layers collide: every tile layer, unless the layer has the property
 ;;; `collides` set to #f (a bool property; the string "false" or the int 0
@@ -62,7 +67,7 @@
    tilemap-screen-size tilemap-cell-anchor tilemap-screen-point
    tilemap-layers tilemap-layer tilemap-properties
    tilemap-tile-at tilemap-cell-at tilemap-flags-at tilemap-solid? tilemap-one-way? tilemap-solid-grid
-   tilemap-kind tile-property-table
+   tilemap-kind tilemap-ladder? tilemap-ladder-top? tile-property-table
    ;; map attributes
    tilemap-source tilemap-version tilemap-tiled-version tilemap-class
    tilemap-orientation tilemap-render-order tilemap-infinite?
@@ -195,6 +200,9 @@
   (define (layer-one-way? layer)
     (eq? #t (property-ref (layer-properties layer) "one-way" #f)))
 
+  (define (layer-ladder? layer)
+    (eq? #t (property-ref (layer-properties layer) "ladder" #f)))
+
   (define-record-type image
     (make-image source width height trans)
     image?
@@ -281,7 +289,7 @@
 
   (define-record-type tilemap
     (%make-tilemap width height tile-width tile-height layers properties solid
-                   origin-col origin-row info tilesets layer-tree kinds)
+                   origin-col origin-row info tilesets layer-tree kinds ladders)
     tilemap?
     (width tilemap-width)
     (height tilemap-height)
@@ -295,7 +303,8 @@
     (info tilemap-info)                 ; alist of the map's attributes
     (tilesets tilemap-tilesets)
     (layer-tree tilemap-layer-tree)     ; every layer, as nested in Tiled
-    (kinds tilemap-kinds))              ; #f, or (u8vector grid . vector of kind symbols)
+    (kinds tilemap-kinds)               ; #f, or (u8vector grid . vector of kind symbols)
+    (ladders tilemap-ladders))          ; #f, or a u8vector: 1 on each ladder cell
 
   (define (info-ref tm key default)
     (let ((p (assq key (tilemap-info tm)))) (if p (cdr p) default)))
@@ -358,7 +367,8 @@
                      (tilemap-tile-width tm) (tilemap-tile-height tm)
                      layers (tilemap-properties tm) (tilemap-solid-grid tm)
                      (tilemap-origin-col tm) (tilemap-origin-row tm)
-                     (tilemap-info tm) (tilemap-tilesets tm) tree (tilemap-kinds tm))))
+                     (tilemap-info tm) (tilemap-tilesets tm) tree (tilemap-kinds tm)
+                     (tilemap-ladders tm))))
 
   ;; Where a tile object's image hangs from its (x, y): the fractions of
   ;; its width and height left of and above that point, (values ax ay).
@@ -440,7 +450,8 @@
   (define tile-property-table
     '(("collides" . bool)       ; #f: never solid, whatever its layer
       ("one-way" . bool)        ; a jump-through platform
-      ("kind" . string)))       ; what the cell is, for the game (tilemap-kind)
+      ("kind" . string)         ; what the cell is, for the game (tilemap-kind)
+      ("ladder" . bool)))       ; a climbable cell, not solid (docs/physics.org, "Ladders")
 
   ;; A name folded for comparison: lower case, without '-', '_' or spaces.
   (define (fold-name name)
@@ -482,12 +493,13 @@
     (or (tileset-source ts) map-source "a map made in code"))
 
   ;; What the tilesets' tiles say, checked: a table gid -> #(collides one-way
-  ;; kind) (each #f when the tile does not set it, kind a symbol) for the
-  ;; tiles that set any, plus each gid of `extra-one-way` as one-way; #f
+  ;; kind ladder) (each #f when the tile does not set it, kind a symbol) for the
+  ;; tiles that set any, plus each gid of `extra-one-way` as one-way (of
+  ;; `extra-ladders` as a ladder); #f
   ;; when there are none. A property of the table of another type, or a
   ;; name that looks like one of the table's, is an error naming the file,
   ;; the tileset, the tile and the property.
-  (define (tile-rules tilesets extra-one-way extra-kinds map-source)
+  (define (tile-rules tilesets extra-one-way extra-kinds extra-ladders map-source)
     (let ((table (make-hash-table)) (any? #f))
       (for-each
        (lambda (ts)
@@ -510,34 +522,46 @@
                                           (where) (car p) (cdr known) (property-type (cdr p)) (cdr p)))))))
                props)
               (let ((collides (assoc "collides" props)) (one-way (assoc "one-way" props))
-                    (kind (assoc "kind" props)))
-                (when (or collides one-way kind)
+                    (kind (assoc "kind" props)) (ladder (assoc "ladder" props)))
+                (when (or collides one-way kind ladder)
                   (set! any? #t)
                   (hash-table-set! table (+ (tileset-first-gid ts) (tile-id t))
                                    (vector (and collides (if (cdr collides) 'yes 'no))
                                            (and one-way (cdr one-way))
-                                           (and kind (string->symbol (cdr kind)))))))))
+                                           (and kind (string->symbol (cdr kind)))
+                                           (and ladder (cdr ladder))))))))
           (tileset-tiles ts)))
        tilesets)
       (for-each (lambda (g)
                   (set! any? #t)
                   (let ((old (hash-table-ref/default table g #f)))
-                    (hash-table-set! table g (vector (and old (vector-ref old 0)) #t (and old (vector-ref old 2))))))
+                    (hash-table-set! table g (vector (and old (vector-ref old 0)) #t (and old (vector-ref old 2))
+                                                     (and old (vector-ref old 3))))))
                 extra-one-way)
+      (for-each (lambda (g)
+                  (unless (exact-integer? g)
+                    (error 'make-tilemap "ladders: must be a list of tile ids" g))
+                  (set! any? #t)
+                  (let ((old (hash-table-ref/default table g #f)))
+                    (hash-table-set! table g (vector (and old (vector-ref old 0)) (and old (vector-ref old 1))
+                                                     (and old (vector-ref old 2)) #t))))
+                extra-ladders)
       (for-each (lambda (p)
                   (unless (and (pair? p) (exact-integer? (car p)) (symbol? (cdr p)))
                     (error 'make-tilemap "kinds: must be a list of (tile-id . symbol)" p))
                   (set! any? #t)
                   (let ((old (hash-table-ref/default table (car p) #f)))
                     (hash-table-set! table (car p) (vector (and old (vector-ref old 0)) (and old (vector-ref old 1))
-                                                           (cdr p)))))
+                                                           (cdr p) (and old (vector-ref old 3))))))
                 extra-kinds)
       (and any? table)))
 
-  ;; The solid grid: 0 empty, 1 solid, 2 one-way. A non-zero gid of a
-  ;; colliding layer is solid, unless its tile says collides false (then
-  ;; it adds nothing) or one-way (2, which a solid tile of another layer
-  ;; in the same cell overrides); on a one-way layer every tile is one-way.
+;; The solid grid: 0 empty, 1 solid, 2 one-way. A non-zero gid of a
+  ;; colliding layer is solid, unless its tile says collides false or
+  ;; ladder (then it adds nothing here) or one-way (2, which a solid tile
+  ;; of another layer in the same cell overrides); on a one-way layer
+  ;; every tile is one-way, on a ladder layer every tile a ladder (see
+  ;; mark-ladder-tops!).
   (define (solid-grid width height layers rules)
     (let* ((n (* width height))
            (grid (make-u8vector n 0)))
@@ -545,19 +569,54 @@
        (lambda (layer)
          (when (layer-collides? layer)
            (let ((data (layer-data layer)))
-             (if (or rules (layer-one-way? layer))
-                 (let ((all? (layer-one-way? layer)))
+             (if (or rules (layer-one-way? layer) (layer-ladder? layer))
+                 (let ((all? (layer-one-way? layer)) (climb? (layer-ladder? layer)))
                    (do ((i 0 (fx+ i 1))) ((fx= i n))
                      (let ((g (cell-gid (u32vector-ref data i))))
                        (unless (fx= 0 g)
                          (let ((rule (and rules (hash-table-ref/default rules g #f))))
                            (cond ((and rule (eq? (vector-ref rule 0) 'no)))
+                                 ((or climb? (and rule (vector-ref rule 3))))
                                  ((not (or all? (and rule (vector-ref rule 1))))
                                   (u8vector-set! grid i 1))
                                  ((fx= 0 (u8vector-ref grid i)) (u8vector-set! grid i 2))))))))
                  (do ((i 0 (fx+ i 1))) ((fx= i n))
                    (unless (fx= 0 (cell-gid (u32vector-ref data i)))
                      (u8vector-set! grid i 1)))))))
+       layers)
+      grid))
+
+  ;; A cell another layer makes solid is no ladder; then each ladder top
+  ;; (no ladder in the cell above, or the map's first row) becomes
+  ;; one-way in the solid grid, where it is empty.
+  (define (mark-ladder-tops! width solid ladders)
+    (when ladders
+      (let ((n (u8vector-length solid)))
+        (do ((i 0 (fx+ i 1))) ((fx= i n))
+          (when (fx= 1 (u8vector-ref solid i)) (u8vector-set! ladders i 0)))
+        (do ((i 0 (fx+ i 1))) ((fx= i n))
+          (when (and (fx= 1 (u8vector-ref ladders i)) (fx= 0 (u8vector-ref solid i))
+                     (or (fx< i width) (fx= 0 (u8vector-ref ladders (fx- i width)))))
+            (u8vector-set! solid i 2))))))
+
+  ;; The ladder cells: 1 where a colliding layer has a ladder tile (its
+  ;; tile says ladder, or its layer does), or #f when there is none. A
+  ;; tile that says collides false is no ladder.
+  (define (ladder-grid width height layers rules)
+    (let* ((n (* width height))
+           (grid #f))
+      (for-each
+       (lambda (layer)
+         (when (and (layer-collides? layer) (or rules (layer-ladder? layer)))
+           (let ((data (layer-data layer)) (climb? (layer-ladder? layer)))
+             (do ((i 0 (fx+ i 1))) ((fx= i n))
+               (let ((g (cell-gid (u32vector-ref data i))))
+                 (unless (fx= 0 g)
+                   (let ((rule (and rules (hash-table-ref/default rules g #f))))
+                     (when (and (not (and rule (eq? (vector-ref rule 0) 'no)))
+                                (or climb? (and rule (vector-ref rule 3))))
+                       (unless grid (set! grid (make-u8vector n 0)))
+                       (u8vector-set! grid i 1)))))))))
        layers)
       grid))
 
@@ -594,7 +653,8 @@
 
   (define (make-tilemap width height tile-width tile-height layers
                         #!key (properties '()) (origin-col 0) (origin-row 0)
-                        (info '()) (tilesets '()) (layer-tree layers) (one-way '()) (kinds '()))
+                        (info '()) (tilesets '()) (layer-tree layers) (one-way '()) (kinds '())
+                        (ladders '()))
     (for-each
      (lambda (layer)
        (unless (and (eq? (layer-kind layer) 'tile)
@@ -608,16 +668,20 @@
                  (fixnum? tile-height) (fx> tile-height 0))
       (error 'make-tilemap "tile size must be positive integers" tile-width tile-height))
     (let* ((source (let ((p (assq 'source info))) (and p (cdr p))))
-           (rules (tile-rules tilesets one-way kinds source)))
+           (rules (tile-rules tilesets one-way kinds ladders source))
+           (climbable (ladder-grid width height layers rules))
+           (solid (solid-grid width height layers rules)))
+      (mark-ladder-tops! width solid climbable)
       (%make-tilemap width height tile-width tile-height layers properties
-                     (solid-grid width height layers rules) origin-col origin-row
-                     info tilesets layer-tree (kind-grid width height layers rules source))))
+                     solid origin-col origin-row
+                     info tilesets layer-tree (kind-grid width height layers rules source) climbable)))
 
   ;; A one-layer map from rows of tile ids: procedural levels, tests, the REPL.
   ;; one-way: the tile ids that are one-way platforms; kinds: an alist
-  ;; (tile-id . kind) of the tiles' kinds (as the `kind` tile property).
+  ;; (tile-id . kind) of the tiles' kinds (as the `kind` tile property);
+  ;; ladders: the tile ids that are ladders.
   (define/keywords (list->tilemap rows #!key (tile-width 16) (tile-height 16) (name "tiles")
-                                  (one-way '()) (kinds '()))
+                                  (one-way '()) (kinds '()) (ladders '()))
     (let* ((height (length rows))
            (width (if (null? rows) 0 (length (car rows))))
            (data (make-u32vector (* width height) 0)))
@@ -636,7 +700,7 @@
           (loop (cdr rows) (+ j 1))))
       (make-tilemap width height tile-width tile-height
                     (list (make-layer name width height data))
-                    one-way: one-way kinds: kinds)))
+                    one-way: one-way kinds: kinds ladders: ladders)))
 
   ;;; ------------------------------------------------------------------
   ;;; Where Tiled draws things, for every orientation (the renderer and the
@@ -794,6 +858,16 @@
   (define (tilemap-kind tm col row)
     (let ((i (cell-index 'tilemap-kind tm col row)) (k (tilemap-kinds tm)))
       (and i k (vector-ref (cdr k) (u8vector-ref (car k) i)))))
+
+;; Whether the cell is a ladder (docs/physics.org, "Ladders"): O(1).
+  (define (tilemap-ladder? tm col row)
+    (let ((i (cell-index 'tilemap-ladder? tm col row)) (l (tilemap-ladders tm)))
+      (and i l (fx= 1 (u8vector-ref l i)))))
+
+  ;; Whether the cell is a ladder's top: a ladder with no ladder above it.
+  (define (tilemap-ladder-top? tm col row)
+    (and (tilemap-ladder? tm col row)
+         (not (tilemap-ladder? tm col (- row 1)))))
 
   ;;; ------------------------------------------------------------------
   ;;; Properties

@@ -1,9 +1,10 @@
 ;;; Platformer: a Tiled level, gravity, jumps, a moving platform, a lift,
-;;; jump-through ledges and a camera that glides; a title, a pause and a
-;;; game over (game states, docs/scenes.org).
+;;; jump-through ledges, a ladder, enemies to stomp and a camera that
+;;; glides; a title, a pause and a game over (game states, docs/scenes.org).
 ;;;   bin/demo-platformer        Enter starts and pauses, arrows or A/D
 ;;;                              walk, z or j jumps, down drops through a
-;;;                              ledge, escape quits
+;;;                              ledge, up and down climb the ladder,
+;;;                              escape quits
 ;;; The title is a state pushed over the level, which it freezes and
 ;;; draws (the player shows, though no frame has run); Enter pops it.
 ;;; Enter in play pushes the pause over the frozen level. A fall into a
@@ -19,6 +20,16 @@
 ;;; of the object layer "coins", loaded as entities: touching one takes
 ;;; it, with a sound and a puff of sparkles (particles), and the count is
 ;;; drawn as text.
+;;; The ladder near the end is the tile layer "ladders", drawn with
+;;; ladders.tsx's tile, which has the bool property ladder: the player is
+;;; a #:climber?, and the library's climbing step does the rest
+;;; (docs/physics.org, "Ladders"); the game only says which way the
+;;; player wants to climb (#:climb) and lets it jump while climbing. It
+;;; leads to a ledge with two coins. The enemies are the tile objects of
+;;; the object layer "enemies": they walk and turn round where their
+;;; contacts say they touch a wall; landing on one from above squashes it
+;;; (entity-overlap-side says above), meeting one from any other side
+;;; costs a life.
 ;;; The level is demo/levels/platformer.tmx (open it in Tiled); the art and
 ;;; sounds come from tools/make-assets.scm (make assets).
 (include "demo/common.scm")
@@ -30,13 +41,21 @@
 
 (define walk-speed 2)                   ; px per frame
 (define font-file "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf")
-(define start-x 32)
+;; --start-x N on the command line starts the player at x N (the ladder
+;; is at x 864), to try the end of the level at once.
+(define start-x
+  (let ((arg (member "--start-x" (command-line-arguments))))
+    (or (and arg (pair? (cdr arg)) (string->number (cadr arg))) 32)))
 (define start-y 192)
 (define lives-at-start 3)
 
 ;; Sprite frames: gids of sprites.tsx, the level's second tileset (first gid 9).
 (define idle 9) (define walk-a 10) (define walk-b 11) (define in-air 12)
 (define coin-front 21) (define coin-turning 22) (define coin-edge 23)
+(define enemy-walk 13) (define enemy-squashed 16) (define enemy-stretched 17)
+(define stomp-bounce -6)                ; the player's #:vy after a stomp
+(define squashed-frames 30)             ; how long a squashed enemy stays
+(define grace-frames 60)                ; no hurt for this long after a respawn
 
 ;; A coin of the map, as game-load-scene! made it (#:type coin, its box,
 ;; #:tile-id 21), made to spin.
@@ -62,6 +81,8 @@
   (list #:type 'player #:tags '(player camera-target)
         #:x start-x #:y start-y #:width 16 #:height 16
         #:gravity? #t #:solid? #t
+        ;; climbs the map's ladders when #:climb (set from input) asks
+        #:climber? #t
         ;; no #:tile-id: the renderer shows the first animation's first
         ;; frame until the pipeline writes one (the frozen title shows it)
         #:animations (list (list (cons #:name 'idle) (cons #:frames (list idle)) (cons #:duration 1))
@@ -129,20 +150,74 @@
                    (map sparkles taken))
             (length taken))))
 
-;; Input becomes velocity; a jump is a one-frame impulse, only from the ground.
+;; A walking enemy of the map, as game-load-scene! made it (#:type enemy,
+;; its box, #:tile-id 13): it falls, walks left, and is told its contacts.
+(define (walking enemy)
+  (entity-set* enemy
+               #:gravity? #t #:vx -1 #:facing -1 #:contacts? #t
+               #:animations (list (list (cons #:name 'walk) (cons #:frames (list enemy-walk enemy-stretched))
+                                        (cons #:duration 12)))
+               #:anim-name 'walk))
+
+;; An enemy turns round when its side touches a wall's tiles (the tile
+;; step has stopped it, #:vx 0).
+(define (move-enemy e)
+  (let ((vx (cond ((pair? (entity-touch-tiles e 'left)) 1)
+                  ((pair? (entity-touch-tiles e 'right)) -1)
+                  (else (entity-ref e #:vx)))))
+    (entity-set* e #:vx vx #:facing vx)))
+
+;; A stomped enemy: flat, still, gone after squashed-frames.
+(define (squash e)
+  (entity-set* (entity-remove (entity-remove e #:animations) #:contacts?)
+               #:type 'squashed #:tile-id enemy-squashed #:vx 0 #:frames-left squashed-frames))
+
+(define (age-squashed e)
+  (entity-set e #:frames-left (- (entity-ref e #:frames-left) 1)))
+
+;; The enemies the player met this frame, by the side it met them from
+;; (entity-overlap-side): from above it stomps them and bounces up; from
+;; any other side it is hurt, unless it has just respawned (#:grace).
+;; Answers the new scene and whether it was hurt.
+(define (stomp-enemies scene)
+  (let* ((p (scene-find-tagged scene 'player))
+         (met (foldr (lambda (e out)
+                       (let ((side (and (eq? (entity-type e) 'enemy) (entity-overlap-side p e))))
+                         (if side (cons (cons e side) out) out)))
+                     '() (scene-entities scene)))
+         (stomped (map car (filter-entities (lambda (m) (eq? (cdr m) 'above)) met))))
+    (unless (null? stomped) (play-effect 'jump))
+    (values (scene-map-entities scene (lambda (s e)
+                                        (cond ((memq e stomped) (squash e))
+                                              ((and (eq? e p) (pair? stomped)) (entity-set e #:vy stomp-bounce))
+                                              (else e))))
+            (and (not (= (length stomped) (length met)))
+                 (<= (entity-ref p #:grace 0) 0)))))
+
+;; Input becomes velocity; a jump is a one-frame impulse, only from the
+;; ground or a ladder. Up and down are the climbing intent the ladder
+;; step reads (#:climb); climbing, the player faces the ladder.
 (define (control-player input p)
   (let* ((dir (cond ((input-held? input 'left) -1)
                     ((input-held? input 'right) 1)
                     (else 0)))
+         (climb (cond ((input-held? input 'up) -1)
+                      ((input-held? input 'down) 1)
+                      (else 0)))
          (ground? (entity-ref p #:on-ground? #f))
-         (jump? (and ground? (input-pressed? input 'a))))
+         (climbing? (entity-ref p #:climbing? #f))
+         (jump? (and (or ground? climbing?) (input-pressed? input 'a))))
     (when jump? (play-effect 'jump))
     (chain (if jump? (entity-set p #:ay (- *jump-force*)) p)
-           ;; held down: fall through the one-way ledges
+           ;; held down: fall through the one-way ledges (on a ladder's
+           ;; top, climbing down comes first)
            (entity-set _ #:drop-through? (input-held? input 'down))
+           (entity-set _ #:climb climb)
+           (entity-set _ #:grace (max 0 (- (entity-ref p #:grace 0) 1)))
            (entity-set _ #:vx (* dir walk-speed))
            (entity-set _ #:facing (if (zero? dir) (entity-ref p #:facing 1) dir))
-           (set-animation _ (cond ((not ground?) 'air) ((zero? dir) 'idle) (else 'walk))))))
+           (set-animation _ (cond (climbing? (if (zero? climb) 'idle 'walk))
+                                  ((not ground?) 'air) ((zero? dir) 'idle) (else 'walk))))))
 
 ;; The dust of the footsteps the walk animation marked this frame.
 (define (kick-up-dust scene)
@@ -155,7 +230,7 @@
 (define (fallen? p) (> (entity-ref p #:y) 200))
 
 (define (respawn p)
-  (chain p (entity-set _ #:x start-x) (entity-set _ #:y start-y) (entity-set _ #:vy 0)))
+  (entity-set* p #:x start-x #:y start-y #:vy 0 #:climbing? #f #:grace grace-frames))
 
 ;; The platform turns around at the ends of its track.
 (define (move-platform p)
@@ -170,33 +245,43 @@
   (game-asset-set! game 'lives lives-at-start)
   (let* ((scene (game-load-scene! game "demo/levels/platformer.tmx"
                                   entities: (list platform lift player)
-                                  objects->entities: '("coins")
+                                  objects->entities: '("coins" "enemies")
                                   camera: camera))
          (sprites (cadr (tilemap-tilesets (scene-tilemap scene)))))
     ;; entities draw their #:tile-id from the sprite sheet
     (game-scene-set! game (scene-map-entities
                            (update-scene scene tileset: sprites tileset-texture: #f)
-                           (lambda (s e) (if (eq? (entity-type e) 'coin) (spinning e) e))))))
+                           (lambda (s e)
+                             (case (entity-type e)
+                               ((coin) (spinning e))
+                               ((enemy) (walking e))
+                               (else e)))))))
 
 (define (start-pressed? game) (input-pressed? (game-input game) 'start))
 
-;; One frame of play: the player and the platform move, coins are taken,
-;; footsteps raise dust; Enter pauses; a fall costs a life, the last one
+;; One frame of play: enemies met are stomped or hurt the player, the
+;; player, the platform and the enemies move, coins are taken, footsteps
+;; raise dust; Enter pauses; a fall or a hurt costs a life, the last one
 ;; the game (a fade to the game over screen).
 (define (play! game dt)
-  (receive (scene taken)
+  (receive (scene hurt?) (stomp-enemies (game-scene game))
+   (receive (scene taken)
       (collect-coins
        (kick-up-dust
-        (scene-map-entities
-         (game-scene game)
-         (lambda (scene e)
-           (case (entity-type e)
-             ((player) (control-player (game-input game) e))
-             ((platform) (move-platform e))
-             (else e))))))
+        (scene-remove-entities
+         (scene-map-entities
+          scene
+          (lambda (scene e)
+            (case (entity-type e)
+              ((player) (control-player (game-input game) e))
+              ((platform) (move-platform e))
+              ((enemy) (move-enemy e))
+              ((squashed) (age-squashed e))
+              (else e))))
+         (lambda (e) (and (eq? (entity-type e) 'squashed) (<= (entity-ref e #:frames-left) 0))))))
     (game-asset-set! game 'coins (+ taken (game-asset game 'coins)))
     (let ((p (scene-find-tagged scene 'player)))
-      (cond ((not (fallen? p)) (game-scene-set! game scene))
+      (cond ((not (or hurt? (fallen? p))) (game-scene-set! game scene))
             ((> (game-asset game 'lives) 1)
              (game-asset-set! game 'lives (- (game-asset game 'lives) 1))
              (game-scene-set! game (scene-map-entities scene (lambda (s e) (if (eq? e p) (respawn e) e)))))
@@ -204,7 +289,7 @@
              (game-asset-set! game 'lives 0)
              (game-scene-set! game scene)
              (game-state-set! game 'game-over transition: (make-fade out: 500 in: 500)))))
-    (when (start-pressed? game) (game-state-push! game 'pause))))
+    (when (start-pressed? game) (game-state-push! game 'pause)))))
 
 ;; Text centred on the view at height y, when the font loaded.
 (define (centred-text! game text y color)
@@ -293,6 +378,10 @@
                                (scene-entities (game-scene game))))
         (camera (scene-camera (game-scene game))))
     (when (and p (pair? lift))
+      (printf "platformer: enemies ~a squashed ~a climbing ~a~%"
+              (length (filter-entities (lambda (e) (eq? (entity-type e) 'enemy)) (scene-entities (game-scene game))))
+              (length (filter-entities (lambda (e) (eq? (entity-type e) 'squashed)) (scene-entities (game-scene game))))
+              (entity-ref p #:climbing? #f))
       (printf "platformer: coins ~a left ~a sparkles ~a~%" (game-asset game 'coins)
               (length (scene-find-all-tagged (game-scene game) 'coin))
               (foldl (lambda (n e) (if (eq? (entity-type e) 'sparkles)

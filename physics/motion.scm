@@ -47,8 +47,9 @@
     guard: (gravity-on? entity)
     (accelerate scene entity))
 
+  ;; A climbing body (docs/physics.org, "Ladders") is out of gravity's reach.
   (define-pipeline (apply-gravity gravity) (scene entity dt)
-    guard: (gravity-on? entity)
+    guard: (and (gravity-on? entity) (not (climbing? entity)))
     (fall scene entity))
 
   ;; Body controls (docs/physics.org, "Body controls"), opt-in keys:
@@ -97,8 +98,9 @@
   ;; entity without #:skip-pipelines has each guard read once and each rule
   ;; called directly; any other runs the steps themselves.
   ;; controls?: whether the entity may have body controls (the pass asks
-  ;; only when some entity of the scene has them).
-  (define (motion-steps scene e dt controls?)
+  ;; only when some entity of the scene has them); climbers?: whether it
+  ;; may be climbing a ladder, likewise.
+  (define (motion-steps scene e dt controls? climbers?)
     (if (entity-ref e #:skip-pipelines #f)  ; a list, or the steps' error
         (let* ((e (apply-acceleration scene e dt))
                (e (apply-gravity scene e dt))
@@ -108,12 +110,15 @@
                (e (apply-velocity-y scene e dt)))
           (resolve-tile-collisions-y scene e dt))
         (let* ((map? (scene-tilemap scene))
-               (e (if (gravity-on? e) (fall scene (accelerate scene e)) e))
+               (e (if (gravity-on? e)
+                      (let ((e (accelerate scene e)))
+                        (if (and climbers? (climbing? e)) e (fall scene e)))
+                      e))
                (e (if (and controls? (has-controls? e)) (control scene e) e))
                (e (move-x scene e))
                (e (if map? (stop-at-tiles-x scene e) e))
                (e (move-y scene e)))
-          (if map? (stop-at-tiles-y scene e) e))))
+          (if map? (stop-at-tiles-y scene e climbers?) e))))
 
   ;; What rewrite-motion's callers pass for a key they leave as it is: the
   ;; symbol keep, which no value they write (a number or a boolean) can be.
@@ -218,7 +223,10 @@
   ;; (#:drag, #:air-drag, #:max-vx, #:max-vy, #:bounce); such an entity
   ;; takes the readable steps. The engine passes #f when none has them,
   ;; so that no entity is asked.
-  (define (motion-pass scene dt #!optional ground? (controls? #t))
+  ;; climbers? (default #t): whether some entity may be climbing a ladder
+  ;; (#:climber? and #:climbing?); such an entity takes the readable
+  ;; steps. The engine passes #f in a scene without a climber.
+  (define (motion-pass scene dt #!optional ground? (controls? #t) (climbers? #t))
     (let* ((tm (scene-tilemap scene))
            (map-data (and tm (pass-map tm)))
            (map? (and map-data #t))
@@ -235,12 +243,13 @@
            (out (make-vector 8 1)))
       ;; An entity the C code leaves (see above).
       (define (general e)
-        (let ((moved (motion-steps scene e dt controls?)))
+        (let ((moved (motion-steps scene e dt controls? climbers?)))
           (if ground? (detect-on-solid scene moved dt) moved)))
       (if (and tm (not map?))
           general
           (lambda (e)
-           (if (and controls? (or (has-controls? e) (assq #:bounce e)))
+           (if (or (and controls? (or (has-controls? e) (assq #:bounce e)))
+                   (and climbers? (climbing? e)))
             (general e)
             (entity-let e ((xp #:x) (yp #:y) (wp #:width) (hp #:height) (vxp #:vx) (vyp #:vy)
                            (ayp #:ay) (gp #:gravity?) (skipp #:skip-pipelines)

@@ -9,7 +9,7 @@
 enum {
   DS_KEY_TWEEN, DS_KEY_GRAVITY, DS_KEY_SOLID, DS_KEY_GROUP_ID,
   DS_KEY_ANIMATIONS, DS_KEY_IMMOVABLE, DS_KEY_EMITTER, DS_KEY_ONE_WAY, DS_KEY_CONTACTS,
-  DS_KEY_DRAG, DS_KEY_AIR_DRAG, DS_KEY_MAX_VX, DS_KEY_MAX_VY, DS_KEY_BOUNCE,
+  DS_KEY_DRAG, DS_KEY_AIR_DRAG, DS_KEY_MAX_VX, DS_KEY_MAX_VY, DS_KEY_BOUNCE, DS_KEY_CLIMBER,
   DS_NEED_KEYS                  /* how many */
 };
 
@@ -25,7 +25,8 @@ enum {
                                    or #:one-way? (landings read where bodies began) */
   DS_NEED_PARTICLES = 128,      /* an entity has an #:emitter */
   DS_NEED_CONTACTS = 256,       /* an entity has #:contacts? */
-  DS_NEED_CONTROLS = 512        /* an entity has a body control (#:drag ... #:bounce) */
+  DS_NEED_CONTROLS = 512,       /* an entity has a body control (#:drag ... #:bounce) */
+  DS_NEED_CLIMBERS = 1024       /* an entity has #:climber? (the climbing step) */
 };
 
 #endif

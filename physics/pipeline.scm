@@ -14,7 +14,7 @@
 ;;; scenes, frame after frame, and compares every entity.
 
 (module (downstroke pipeline)
-  (contract-pipeline engine-pipeline pipeline-failing-step contract-steps)
+  (contract-pipeline engine-pipeline pipeline-failing-step contract-steps engine-pipeline-steps)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign) (chicken condition)
           (downstroke scene) (downstroke physics) (downstroke tween)
@@ -30,6 +30,7 @@
     (chain scene
       (scene-map-entities _ (cut record-frame-start        <> <> dt))
       (scene-map-entities _ (cut step-tweens               <> <> dt))
+      (scene-map-entities _ (cut apply-climbing            <> <> dt))
       (scene-map-entities _ (cut apply-acceleration        <> <> dt))
       (scene-map-entities _ (cut apply-gravity             <> <> dt))
       (scene-map-entities _ (cut apply-body-controls       <> <> dt))
@@ -53,6 +54,7 @@
   (define contract-steps
     (list (cons 'frame-start       (per-entity record-frame-start))
           (cons 'tweens            (per-entity step-tweens))
+          (cons 'climbing          (per-entity apply-climbing))
           (cons 'acceleration      (per-entity apply-acceleration))
           (cons 'gravity           (per-entity apply-gravity))
           (cons 'controls          (per-entity apply-body-controls))
@@ -103,6 +105,7 @@
   (define-c-constant need-particles DS_NEED_PARTICLES 128) ; an entity has an #:emitter
   (define-c-constant need-contacts DS_NEED_CONTACTS 256)   ; an entity has #:contacts?
   (define-c-constant need-controls DS_NEED_CONTROLS 512)   ; an entity has a body control
+  (define-c-constant need-climbers DS_NEED_CLIMBERS 1024)  ; an entity has #:climber?
   (define-c-constant key-tween DS_KEY_TWEEN 0)
   (define-c-constant key-gravity DS_KEY_GRAVITY 1)
   (define-c-constant key-solid DS_KEY_SOLID 2)
@@ -117,14 +120,16 @@
   (define-c-constant key-max-vx DS_KEY_MAX_VX 11)
   (define-c-constant key-max-vy DS_KEY_MAX_VY 12)
   (define-c-constant key-bounce DS_KEY_BOUNCE 13)
-  (define-c-constant need-key-count DS_NEED_KEYS 14)
+  (define-c-constant key-climber DS_KEY_CLIMBER 14)
+  (define-c-constant need-key-count DS_NEED_KEYS 15)
   (define need-keys
     (let ((v (make-vector need-key-count)))
       (for-each (lambda (i k) (vector-set! v i k))
                 (list key-tween key-gravity key-solid key-group-id key-animations key-immovable key-emitter
-                      key-one-way key-contacts key-drag key-air-drag key-max-vx key-max-vy key-bounce)
+                      key-one-way key-contacts key-drag key-air-drag key-max-vx key-max-vy key-bounce
+                      key-climber)
                 (list #:tween #:gravity? #:solid? #:group-id #:animations #:immovable? #:emitter #:one-way?
-                      #:contacts? #:drag #:air-drag #:max-vx #:max-vy #:bounce))
+                      #:contacts? #:drag #:air-drag #:max-vx #:max-vy #:bounce #:climber?))
       v))
 
   ;; The walk below, in C (needs.c): it reads every pair of every entity
@@ -157,6 +162,7 @@
                         ((or (eq? k #:immovable?) (eq? k #:one-way?)) (walk (cdr ps) (fxior bits need-start) solid?))
                         ((eq? k #:emitter) (walk (cdr ps) (fxior bits need-particles) solid?))
                         ((eq? k #:contacts?) (walk (cdr ps) (fxior bits need-contacts) solid?))
+                        ((eq? k #:climber?) (walk (cdr ps) (fxior bits need-climbers) solid?))
                         ((memq k '(#:drag #:air-drag #:max-vx #:max-vy #:bounce))
                          (walk (cdr ps) (fxior bits need-controls) solid?))
                         (else (walk (cdr ps) bits solid?)))))))))
@@ -176,13 +182,20 @@
     (let* ((before (pipeline-needs (scene-entities scene)))
            (tweens? (needs? before need-tweens))
            (ground-in-motion? (ground-joins-motion? before))
-           ;; a tween's on-complete may add a body control: then every
-           ;; entity is asked
-           (move (motion-pass scene dt ground-in-motion? (or tweens? (needs? before need-controls))))
+           ;; a tween's on-complete may add a body control or make a
+           ;; climber: then every entity is asked
+           (climbs? (or tweens? (needs? before need-climbers)))
+           (move (motion-pass scene dt ground-in-motion? (or tweens? (needs? before need-controls)) climbs?))
            ;; where platforms start, when one may carry a rider this frame,
            ;; and where solid bodies start, when one may land on a one-way one
            (starts? (needs? before need-start))
-           (scene (scene-map-entities scene (cond ((and tweens? starts?)
+           (scene (scene-map-entities scene (cond (climbs?
+                                                   ;; a scene with a climber (or a tween)
+                                                   (lambda (s e)
+                                                     (let* ((e (if starts? (record-frame-start s e dt) e))
+                                                            (e (if tweens? (step-tweens s e dt) e)))
+                                                       (move (apply-climbing s e dt)))))
+                                                  ((and tweens? starts?)
                                                    (lambda (s e) (move (step-tweens s (record-frame-start s e dt) dt))))
                                                   (tweens? (lambda (s e) (move (step-tweens s e dt))))
                                                   (starts? (lambda (s e) (move (record-frame-start s e dt))))
@@ -203,6 +216,33 @@
                           (cut scene-map-entities <> (lambda (s e) (apply-animation s e dt))) _)
              (when-needed need-particles
                           (cut scene-map-entities <> (lambda (s e) (step-particles s e dt))) _))))
+
+;; The names (as in contract-steps) of the steps engine-pipeline runs on
+  ;; this scene as it is: the motion steps always (the motion pass), each
+  ;; other one only when some entity needs it, read from the same bits
+  ;; engine-pipeline decides by. A tween's on-complete may make more
+  ;; needed within the frame; with a tween, the climbing and controls
+  ;; steps are run anyway.
+  (define (engine-pipeline-steps scene)
+    (let* ((bits (pipeline-needs (scene-entities scene)))
+           (tweens? (needs? bits need-tweens)))
+      (let loop ((steps contract-steps) (out '()))
+        (if (null? steps)
+            (reverse out)
+            (let* ((name (caar steps))
+                   (run? (case name
+                           ((frame-start) (needs? bits need-start))
+                           ((tweens) tweens?)
+                           ((climbing) (or tweens? (needs? bits need-climbers)))
+                           ((controls) (or tweens? (needs? bits need-controls)))
+                           ((on-solid) (needs? bits need-ground))
+                           ((entity-collisions) (needs? bits need-pairs))
+                           ((groups) (needs? bits need-groups))
+                           ((contacts) (needs? bits need-contacts))
+                           ((animation) (needs? bits need-animation))
+                           ((particles) (needs? bits need-particles))
+                           (else #t))))      ; the motion pass
+              (loop (cdr steps) (if run? (cons name out) out)))))))
 
   ;; Tile ground detection may join the motion pass (one walk instead of
   ;; two) only when it reads nothing but the entity itself and the map:

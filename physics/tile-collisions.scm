@@ -9,7 +9,7 @@
   (resolve-tile-collisions-x resolve-tile-collisions-y discrete-safe-speed tunnel-risk?
    ;; for sibling modules only: the rules behind the steps, for the motion
    ;; pass and ground detection
-   swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground?)
+   swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing?)
 
   (import scheme (chicken base) (chicken format) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke map)
@@ -87,18 +87,29 @@
                                           l0 -1 c0 c1))))
         (and line (tile-push-pos v line tile size)))))
 
+  ;; Whether a body is on a ladder (docs/physics.org, "Ladders"): a
+  ;; #:climber? whose #:climbing? the climbing step set. Gravity leaves it
+  ;; alone and it passes one-way tiles (a ladder's top) as a body with
+  ;; #:drop-through? does.
+  (define (climbing? entity)
+    (and (entity-ref entity #:climbing? #f) (entity-ref entity #:climber? #f)))
+
   ;; Both tile passes: pos-key is the axis resolved, across-key the other,
   ;; `start` where this axis's motion started. A velocity of 0 snaps
-  ;; nothing. A body with #:drop-through? falls through one-way tiles.
+  ;; nothing. A body with #:drop-through?, or climbing, falls through
+  ;; one-way tiles.
+  ;; climbers?: whether the body may be climbing (the motion pass asks
+  ;; only in a scene with a climber).
   (define (resolve-tiles entity swept start pos-key size-key vel-key across-key across-size-key
-                         tile tile-across grid)
+                         tile tile-across grid #!optional (climbers? #t))
     (let ((v (num entity vel-key)))
       (if (zero? v)
           entity
           (let ((stop (tile-stop v (num entity pos-key) (num entity size-key)
                                  (num entity across-key) (num entity across-size-key)
                                  swept start
-                                 (and (eq? pos-key #:y) (> v 0) (not (entity-ref entity #:drop-through? #f)))
+                                 (and (eq? pos-key #:y) (> v 0) (not (entity-ref entity #:drop-through? #f))
+                                      (not (and climbers? (climbing? entity))))
                                  tile tile-across grid)))
             (if stop
                 (entity-set* entity pos-key stop vel-key (rebound entity v))
@@ -164,7 +175,7 @@
   ;; The y pass. A swept body that skips the x tile pass leaves solid
   ;; tiles here, from where its frame started on both axes, (x - vx,
   ;; y - vy).
-  (define (stop-at-tiles-y scene entity)
+  (define (stop-at-tiles-y scene entity #!optional (climbers? #t))
     (let* ((tm (scene-tilemap scene))
            (swept (swept? scene entity))
            (my (velocity-moved entity #:vy 'velocity-y))
@@ -175,7 +186,7 @@
                           (leave-solids entity tm (- (num entity #:x) mx) sy mx my #:y))
                         (values entity sy))))
         (resolve-tiles entity swept sy #:y #:height #:vy #:x #:width
-                       (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm)))))
+                       (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm) climbers?))))
 
   (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
     guard: (scene-tilemap scene)

@@ -25,10 +25,13 @@
     (let ((q (/ pos tile)))
       (and (integer? q) (->integer q))))
 
-  ;; What a touched tile is: its kind, else solid or one-way.
+  ;; What a touched tile is: its kind, else solid, ladder (a ladder's
+  ;; one-way top) or one-way.
   (define (tile-name tm col row)
     (or (tilemap-kind tm col row)
-        (if (tilemap-solid? tm col row) 'solid 'one-way)))
+        (cond ((tilemap-solid? tm col row) 'solid)
+              ((tilemap-ladder? tm col row) 'ladder)
+              (else 'one-way))))
 
   ;; The tiles of line `line` across cells lo..hi that hold a body's side:
   ;; solid ones, and one-way ones when one-way? (a floor).

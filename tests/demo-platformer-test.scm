@@ -117,3 +117,45 @@
   (test "start on the game over screen fades back to a fresh level and its title"
         "platformer: state (title #f) lives 3"
         (car (pl-run! (pl-reckless 540 '(560 start) '(561)) 620 (demo-tmp "pl-again.png")))))
+
+;; The end of the level, at once (--start-x 858: the player starts on the
+;; ground beside the ladder of column 54, x 864): the ladder of the tile
+;; layer "ladders" climbed through the library's ladder step, the ledge
+;; it leads to, and the enemies of the object layer "enemies".
+(define (pl-end! script frames #!optional shot (start 858))
+  (with-output-to-file (demo-tmp "pl-end.scm") (lambda () (write script)))
+  (when (and shot (file-exists? shot)) (delete-file shot))
+  (let ((lines (demo-output (sprintf "bin/demo-platformer --headless --start-x ~a --frames ~a --script ~a~a"
+                                     start frames (demo-tmp "pl-end.scm")
+                                     (if shot (string-append " --screenshot " shot) "")))))
+    (map (lambda (start) (let ((l (filter-lines start lines))) (if (pair? l) (car l) "")))
+         '("platformer: state" "platformer: coins" "platformer: enemies" "platformer: player"))))
+
+(test-group "demo: platformer's ladder"
+  (let ((mid (pl-end! '((0 start) (1 up)) 40 (demo-tmp "pl-ladder.png"))))
+    ;; up read in frame 1's update, so 38 frames of climbing from y 192
+    (test "holding up: the player grabbed the ladder, centred on it, and climbs 2 px a frame"
+          '("platformer: enemies 2 squashed 0 climbing #t" (864 116))
+          (list (caddr mid) (let ((n (pl-numbers (cadddr mid)))) (list (car n) (cadr n)))))
+    (test-assert "the ladder's rails are drawn"
+                 (> (png-count (demo-tmp "pl-ladder.png") (near-colour? '(120 78 40) 0)) 100)))
+  (test "at its top (row 5, y 80) the player stands on it, no longer climbing"
+        '("platformer: enemies 2 squashed 0 climbing #f" "platformer: player at (864, 64) on-ground #t")
+        (let ((l (pl-end! '((0 start) (1 up)) 70)))
+          (list (caddr l) (substring (cadddr l) 0 44))))
+  (test "then right along the ledge: the two coins up there are taken"
+        "platformer: coins 2 left 13"
+        (substring (cadr (pl-end! '((0 start) (1 up) (70 right)) 100)) 0 27))
+  (test "back left, down: it climbs down through the top and stands at the foot"
+        "platformer: player at (864, 192) on-ground #t"
+        (substring (cadddr (pl-end! '((0 start) (1 up) (70 right) (100 left) (128 down)) 240)) 0 45)))
+
+(test-group "demo: platformer's enemies"
+  ;; the enemy at x 784 walks left, turns at the wall (x 752) by its
+  ;; contacts, and walks back into the player, who starts at x 800
+  (test "standing still: the enemy walks into its side, which costs a life"
+        '("platformer: state () lives 2" "platformer: enemies 2 squashed 0 climbing #f")
+        (let ((l (pl-end! '((0 start) (1)) 90 #f 800))) (list (car l) (caddr l))))
+  (test "jumping as it comes: the player lands on it from above and squashes it"
+        '("platformer: state () lives 3" "platformer: enemies 1 squashed 1 climbing #f")
+        (let ((l (pl-end! '((0 start) (1) (50 a) (51)) 90 #f 800))) (list (car l) (caddr l)))))

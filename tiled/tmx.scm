@@ -960,7 +960,7 @@
   ;; not read at all, so the decoration collides with no word said. A
   ;; wrong type is an error; a name one slip from one of them a warning
   ;; (a game may have a property of its own of that name).
-  (define grid-layer-properties '("collides" "one-way"))
+  (define grid-layer-properties '("collides" "one-way" "ladder"))
 
   (define (check-layer-properties path layer)
     (for-each

@@ -18,6 +18,8 @@
 ;;;           9 bird wings up  10 wings level  11 wings down
 ;;;   row 2: 12 coin  13 coin turning  14 coin edge-on
 ;;;          15 16 17 torch flame (three flickers)
+;;; ladder.png, one 16 x 16 tile: a wooden ladder (ladders.tsx, the
+;;;   platformer's third tileset, gives it the tile property ladder).
 ;;; shmup.png, 4 tiles of 16 x 16 for the shmup (ship, enemy, bullet, spark).
 ;;; font.png, a sprite font: printable ASCII (32..126) in 6 x 8 cells, 16 to
 ;;; a row; white 5 x 7 glyphs with a dark shadow one pixel down and right.
@@ -112,6 +114,15 @@
             (list draw-ground! draw-brick! draw-grass-top! draw-platform!
                   draw-spikes! draw-coin! draw-background-block! draw-stone!)
             '(0 1 2 3 4 5 6 7)))
+
+;; Two rails and four rungs, on a transparent tile, so that the sky or a
+;; wall shows through.
+(define (draw-ladder! r)
+  (tile-rect! r 0 '(120 78 40) 2 0 3 T)
+  (tile-rect! r 0 '(120 78 40) 11 0 3 T)
+  (for-each (lambda (y) (tile-rect! r 0 '(176 122 64) 5 y 6 2)) '(1 5 9 13))
+  (tile-rect! r 0 '(168 116 62) 2 0 1 T)
+  (tile-rect! r 0 '(168 116 62) 11 0 1 T))
 
 ;; Sprite helper: frame `i` of sprites.png (6 frames to a row).
 (define sprite-columns 6)
@@ -382,7 +393,7 @@
 ;;; ------------------------------------------------------------------
 
 (define asset-names
-  '("tiles.png" "sprites.png" "shmup.png" "font.png" "jump.wav" "coin.wav" "boom.wav" "music.wav"))
+  '("tiles.png" "sprites.png" "ladder.png" "shmup.png" "font.png" "jump.wav" "coin.wav" "boom.wav" "music.wav"))
 
 ;; Every asset is there and newer than this generator: nothing to do.
 (define (assets-fresh?)
@@ -399,6 +410,7 @@
   (init! '(video))
   (make-png! (string-append out-dir "/tiles.png") (* 8 T) T draw-tiles!)
   (make-png! (string-append out-dir "/sprites.png") (* 6 T) (* 3 T) draw-sprites!)
+  (make-png! (string-append out-dir "/ladder.png") T T draw-ladder!)
   (make-png! (string-append out-dir "/shmup.png") (* 4 T) T draw-shmup!)
   (make-png! (string-append out-dir "/font.png") (* font-columns glyph-w) (* 6 glyph-h) draw-font!)
   (quit!)

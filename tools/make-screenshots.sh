@@ -30,3 +30,9 @@ shot sandbox 300
 shot tweens 90
 shot animation 155
 shot audio 120 '((10 a) (11) (40 start) (41) (70 b) (71))'
+
+# docs/physics.org's ladder: the platformer started beside its ladder, up held.
+echo '((0 start) (1 up))' > "$tmp/ladder.scm"
+bin/demo-platformer --headless --start-x 858 --frames 40 --script "$tmp/ladder.scm" \
+  --screenshot "$out/physics-ladder.png" >/dev/null 2>&1
+echo "wrote $out/physics-ladder.png"

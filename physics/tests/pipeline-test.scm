@@ -8,8 +8,8 @@
 ;;;   - entity-set* against repeated entity-set.
 ;;; Compared with equal? (same keys, same order, same values) on random
 ;;; entities: keys present or not, fixnums, exact rationals and flonums,
-;;; skip lists, per-entity collision modes, solids, groups, tweens and
-;;; animations.
+;;; skip lists, per-entity collision modes, solids, groups, tweens,
+;;; animations, and climbers on maps with ladders.
 
 (import scheme (chicken base) (chicken condition) (chicken format) srfi-4 (downstroke test)
         (downstroke entity) (downstroke tilemap) (downstroke scene) (downstroke physics)
@@ -40,10 +40,10 @@
          (cons (let cols ((i 0))
                  (if (= i 12)
                      '()
-                     (cons (cond ((or (= j 11) (pl-chance 15)) 1) ((pl-chance 10) 2) (else 0))
+                     (cons (cond ((or (= j 11) (pl-chance 15)) 1) ((pl-chance 10) 2) ((pl-chance 12) 3) (else 0))
                            (cols (+ i 1)))))
                (rows (+ j 1)))))
-   one-way: '(2)))
+   one-way: '(2) ladders: '(3)))
 
 ;; A random entity: every key appears only sometimes, in a random order.
 (define (pl-entity k)
@@ -77,6 +77,10 @@
                 (and (pl-chance 5) (cons #:max-vx (pl-pick 3 5/2 4.0)))
                 (and (pl-chance 5) (cons #:max-vy (pl-pick 6 12)))
                 (and (pl-chance 8) (cons #:bounce (pl-pick 1/2 1 0.75 0)))
+                (and (pl-chance 35) (cons #:climber? (pl-pick #t #t #f)))
+                (and (pl-chance 50) (cons #:climb (pl-pick -1 0 1 1/2 -1.0)))
+                (and (pl-chance 10) (cons #:climbing? (pl-pick #t #f)))
+                (and (pl-chance 5) (cons #:climb-speed (pl-pick 1 3 5/2 16)))
                 (cons #:id k)))
          (present (let loop ((ps pairs) (out '()))
                     (cond ((null? ps) out)
@@ -161,9 +165,9 @@
          (density (pl-pick 5 30 60 80))
          (data (make-u32vector (* w h) 0)))
     (do ((i 0 (+ i 1))) ((= i (* w h)))
-      (when (pl-chance density) (u32vector-set! data i (pl-pick 1 1 1 2))))
+      (when (pl-chance density) (u32vector-set! data i (pl-pick 1 1 1 2 3))))
     (make-tilemap w h (pl-pick 16 8 10 16 1) (pl-pick 16 8 12 16 1)
-                  (list (make-layer "solid" w h data)) one-way: '(2)
+                  (list (make-layer "solid" w h data)) one-way: '(2) ladders: '(3)
                   origin-col: (- (pl-rand 12) 6) origin-row: (- (pl-rand 12) 6))))
 
 (define (pl-fixnum range)
@@ -192,6 +196,8 @@
          (and (pl-chance 50) (cons #:on-ground? (pl-pick #t #f)))
          (and (pl-chance 15) (cons #:collision-mode (pl-pick 'swept 'discrete)))
          (and (pl-chance 15) (cons #:drop-through? (pl-pick #t #f)))
+         (and (pl-chance 10) (cons #:climber? #t))
+         (and (pl-chance 10) (cons #:climbing? #t))
          (cons #:id k))))
 
 (define (filter-present ps)
@@ -257,6 +263,7 @@
   (let* ((each (lambda (step) (lambda (s) (scene-map-entities s (lambda (s e) (step s e dt))))))
          (scene ((each record-frame-start) scene))
          (scene ((each step-tweens) scene))
+         (scene ((each apply-climbing) scene))
          (scene ((each apply-acceleration) scene))
          (scene ((each apply-gravity) scene))
          (scene ((each apply-body-controls) scene))
@@ -272,6 +279,16 @@
     ((each step-particles) scene)))
 
 (define pl-particles-seen 0)
+;; climbers that grabbed a ladder in a frame compared (not climbing
+;; before it, climbing after), and that let go of one
+(define pl-grabs 0)
+(define pl-let-go 0)
+(define (pl-count-climbs! before after)
+  (for-each (lambda (a b)
+              (let ((was (entity-ref a #:climbing? #f)) (now (entity-ref b #:climbing? #f)))
+                (when (and (entity-ref b #:climber? #f) (not was) now) (set! pl-grabs (+ pl-grabs 1)))
+                (when (and (entity-ref b #:climber? #f) was (not now)) (set! pl-let-go (+ pl-let-go 1)))))
+            before after))
 
 ;; Sometimes an emitter (particles.scm), born in the entity's box.
 (define (pl-with-emitter e)
@@ -287,7 +304,9 @@
         (begin (test "300 random scenes, 10 frames each: identical entities" 0 different)
                (test "every frame compared" 3000 frames)
                (test-assert "emitters among them were stepped (particles were alive)"
-                            (> pl-particles-seen 100)))
+                            (> pl-particles-seen 100))
+               (test-assert "climbers among them grabbed ladders and let go of them"
+                            (and (> pl-grabs 20) (> pl-let-go 20))))
         (let* ((n (pl-pick 0 1 2 3 5 8 40))
                (entities (let make ((i 0)) (if (= i n) '() (cons (pl-with-emitter (pl-with-tween (pl-entity i))) (make (+ i 1))))))
                (scene (make-scene tilemap: (if (pl-chance 80) (pl-map) #f)
@@ -309,6 +328,8 @@
                                      (let ((em (entity-ref e #:emitter #f)))
                                        (when em (set! pl-particles-seen (+ pl-particles-seen (emitter-count em))))))
                                    (scene-entities fast2))
+                         (when (= (length (scene-entities fast)) (length (scene-entities fast2)))
+                           (pl-count-climbs! (scene-entities fast) (scene-entities fast2)))
                          (frame (+ f 1) fast2 slow2 different (+ frames 1)))
                         ((and (pair? fast2) (equal? fast2 slow2))
                          ;; both raised the same error: the scene stops here
@@ -337,7 +358,7 @@
 ;; pipeline-failing-step names the step whose error contract-pipeline raises.
 (test-group "contract-steps: contract-pipeline's steps by name; pipeline-failing-step"
   (test "named as #:skip-pipelines names them"
-        '(frame-start tweens acceleration gravity controls velocity-x tile-collisions-x velocity-y
+        '(frame-start tweens climbing acceleration gravity controls velocity-x tile-collisions-x velocity-y
           tile-collisions-y on-solid entity-collisions groups contacts animation particles)
         (map car contract-steps))
   (let loop ((k 0) (different 0) (errors 0))

@@ -68,8 +68,33 @@
     (test "a kind read on a map without kinds is #f" #f
           (tilemap-kind (list->tilemap '((1 1))) 0 0)))
   (test "the table names every property Downstroke reads, with its type"
-        '(("collides" . bool) ("one-way" . bool) ("kind" . string))
+        '(("collides" . bool) ("one-way" . bool) ("kind" . string) ("ladder" . bool))
         tile-property-table))
+
+(test-group "tile properties: ladder, on the tile or its layer"
+  (tk-tmx tk-path (tk-tile 1 '("ladder" "bool" "true")) "3,2,0,0,3,3,3,3"
+          "<properties><property name=\"ladder\" type=\"bool\" value=\"true\"/></properties>")
+  (let ((tm (load-tilemap tk-path)))
+    (test "the tile with ladder true (row 0, column 1): a ladder, not solid" '(#t #f)
+          (list (tilemap-ladder? tm 1 0) (tilemap-solid? tm 1 0)))
+    (test "it is the ladder's top (nothing above it): one-way" '(#t #t)
+          (list (tilemap-ladder-top? tm 1 0) (tilemap-one-way? tm 1 0)))
+    (test "every tile of the layer with the property ladder is a ladder, not solid"
+          '(#t #t #t #f)
+          (list (tilemap-ladder? tm 0 1) (tilemap-ladder? tm 3 1) (tilemap-ladder? tm 1 1)
+                (tilemap-solid? tm 2 1)))
+    (test "where the ground layer's tile is solid, the cell is solid and no ladder" '(#t #f)
+          (list (tilemap-solid? tm 0 0) (tilemap-ladder? tm 0 0)))
+    (test "column 1: row 1 is under row 0's ladder, so no top" #f (tilemap-one-way? tm 1 1)))
+  (test-assert "the layer property ladder as a string is an error naming it"
+               (let ((msg (begin (tk-tmx tk-path "" "0,0,0,0,1,1,1,1"
+                                         "<properties><property name=\"ladder\" value=\"true\"/></properties>")
+                                 (tk-load-error tk-path))))
+                 (and msg (substring-index "ladder" msg) (substring-index "bool" msg))))
+  (test-assert "the tile property \"ladders\" is named as a slip of \"ladder\""
+               (let ((msg (begin (tk-tmx tk-path (tk-tile 1 '("ladders" "bool" "true")))
+                                 (tk-load-error tk-path))))
+                 (and msg (substring-index "\"ladder\"" msg)))))
 
 (test-group "tile properties: a misspelt or wrongly typed one is named at load"
   (define (message tiles)
