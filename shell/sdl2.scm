@@ -67,6 +67,8 @@
    render-draw-color-set! render-draw-blend-mode-set!
    render-clear! render-fill-rect! render-draw-rect! render-copy!
    render-present! render-read-pixels
+   ;; for (downstroke mapdraw): a tile layer's cells in one call
+   render-tile-cells!
    ;; textures
    img-load-texture! destroy-texture! texture? texture-alive? texture-size max-image-pixels
    texture-alpha-mod-set! texture-alpha-mod texture-blend-mode-set!
@@ -273,6 +275,8 @@ static void downstroke_view(SDL_Renderer *r, int *w, int *h) {
   SDL_RenderGetViewport(r, &vp);
   *w = vp.w; *h = vp.h;
 }
+
+#include "shell/tiles.c"
 EOF
 )
 
@@ -892,6 +896,48 @@ EOF
                                               #t x0 y0 (- x1 x0) (- y1 y0) 0. h? v?)))))
                 ys))
              xs))))))
+
+;;; (render-tile-cells! r textures data width height col0 row0 c0 c1 r0 r1
+  ;;;                     order table tw th fx fy vw vh pass used)
+  ;;; The cells c0..c1 x r0..r1 of an orthogonal tile layer (data: its
+  ;;; u32vector of width x height cells, the first at col0 row0) drawn as
+  ;;; (downstroke mapdraw) draws them, in one call (shell/tiles.c says what
+  ;;; each number is). textures: a vector of this renderer's textures, the
+  ;;; table's texture numbers counting from 1; table: an s32vector. Pass 0
+  ;;; only marks in the u8vector `used` the textures the visible cells
+  ;;; need; pass 1 draws, in runs of one SDL_RenderGeometry call per
+  ;;; texture on an accelerated renderer. Answers #f, drawing nothing, for
+  ;;; what it does not take (more than 64 textures, numbers beyond C's
+  ;;; ints): the caller then draws cell by cell.
+  (define tile-cells
+    (foreign-lambda int "ds_tile_cells" c-pointer int u32vector int int int int int
+                    int int int int int s32vector int int int int int int int int bool u8vector))
+  (define max-tile-textures 64)
+  (define c-int-limit 536870912)
+  (define (c-int? . vs)
+    (let loop ((vs vs))
+      (or (null? vs)
+          (and (fixnum? (car vs)) (fx< (car vs) c-int-limit) (fx> (car vs) (fxneg c-int-limit))
+               (loop (cdr vs))))))
+  (define (render-tile-cells! r textures data width height col0 row0 c0 c1 r0 r1
+                              order table tw th fx fy vw vh pass used)
+    (let ((rp (live-renderer 'render-tile-cells! r))
+          (n (vector-length textures)))
+      (and (fx<= n max-tile-textures)
+           (fx>= (u8vector-length used) n)
+           (c-int? width height col0 row0 c0 c1 r0 r1 order tw th fx fy vw vh pass)
+           (c-int? (* tw (+ (abs col0) width 1)) (* th (+ (abs row0) height 1)))
+           (begin
+             (do ((i 0 (fx+ i 1))) ((fx= i n))
+               (let ((t (vector-ref textures i)))
+                 (unless (eq? (texture-renderer t) r)
+                   (error 'render-tile-cells! "the texture belongs to another renderer" t))
+                 ((foreign-lambda void "ds_tiles_texture" int c-pointer) i (live-texture 'render-tile-cells! t))))
+             (check-status 'render-tile-cells! "SDL_RenderGeometry"
+                           (tile-cells rp n data (u32vector-length data) width height col0 row0
+                                       c0 c1 r0 r1 order table (s32vector-length table) tw th
+                                       fx fy vw vh pass (not (renderer-software? r)) used))
+             #t))))
 
   (define (render-view-size r)
     (let-location ((w int 0) (h int 0))

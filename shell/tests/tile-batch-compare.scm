@@ -1,0 +1,118 @@
+;;; Included by tile-batch-test.scm, in its own process and in the child it
+;;; runs in a real window: maps drawn with mapdraw.scm's C walk of tile
+;;; layers (tile-layer-fast-path?, the default) against the cell-by-cell
+;;; walk, pixel for pixel. Not a suite.
+
+(import scheme (chicken base) (chicken format) (chicken file) (chicken pathname) srfi-4
+        (downstroke sdl2) (downstroke scene) (downstroke camera) (downstroke tilemap)
+        (downstroke renderer) (downstroke mapdraw) (downstroke level))
+
+;; An 8 x 8 tile sheet of 4 x 2 tiles that tell every flip apart: each its
+;; own colour, a white 3 x 2 mark in its top-left corner and a black pixel
+;; at its top-right.
+(define (tb-write-sheet! path shade)
+  (let* ((s (create-rgba-surface! 32 16)) (r (create-software-renderer! s)))
+    (do ((i 0 (+ i 1))) ((= i 8))
+      (let ((x (* 8 (modulo i 4))) (y (* 8 (quotient i 4))))
+        (render-draw-color-set! r (modulo (* 70 i) 256) (modulo (+ shade (* 40 i)) 256) (- 255 (* 30 i)))
+        (render-fill-rect! r (make-rect x y 8 8))
+        (render-draw-color-set! r 255 255 255)
+        (render-fill-rect! r (make-rect x y 3 2))
+        (render-draw-color-set! r 0 0 0)
+        (render-fill-rect! r (make-rect (+ x 7) y 1 1))))
+    (img-save-png! s path)
+    (free-surface! s)))
+
+;; The cell at (col, row) of layer k: every gid of both tilesets with
+;; every combination of the three flip flags, and empty cells.
+(define (tb-cell k col row)
+  (let* ((h (modulo (+ (* 7 col) (* 13 row) (* 5 k) (* col row)) 23))
+         (gid (+ 1 (modulo (+ col (* 3 row) k) 16)))
+         (flags (list-ref '(0 #x80000000 #x40000000 #x20000000 #xC0000000 #xA0000000 #x60000000 #xE0000000)
+                          (modulo (+ h row) 8))))
+    (if (< h (+ 3 (* 4 k))) 0 (+ gid flags))))
+
+(define (tb-layer-csv k w h)
+  (let rows ((row 0) (out ""))
+    (if (= row h)
+        out
+        (rows (+ row 1)
+              (string-append out
+                             (let cols ((col 0) (line ""))
+                               (if (= col w)
+                                   line
+                                   (cols (+ col 1)
+                                         (string-append line (number->string (tb-cell k col row))
+                                                        (if (and (= row (- h 1)) (= col (- w 1))) "" ",")))))
+                             "\n")))))
+
+;; A 40 x 30 map in `order` of 8 x 8 cells: two tilesets (the second with
+;; a tile offset and an animated tile), a plain layer, a translucent
+;; tinted one and one with parallax and an offset.
+(define (tb-write-map! dir order)
+  (let ((path (make-pathname dir (string-append "batch-" order) "tmx")))
+    (with-output-to-file path
+      (lambda ()
+        (printf "<?xml version=\"1.0\" encoding=\"UTF-8\"?>
+<map version=\"1.8\" orientation=\"orthogonal\" renderorder=\"~a\" width=\"40\" height=\"30\" tilewidth=\"8\" tileheight=\"8\" infinite=\"0\">
+ <tileset firstgid=\"1\" name=\"a\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"8\" columns=\"4\">
+  <image source=\"sheet-a.png\" width=\"32\" height=\"16\"/>
+ </tileset>
+ <tileset firstgid=\"9\" name=\"b\" tilewidth=\"8\" tileheight=\"8\" tilecount=\"8\" columns=\"4\">
+  <tileoffset x=\"3\" y=\"-2\"/>
+  <image source=\"sheet-b.png\" width=\"32\" height=\"16\"/>
+  <tile id=\"1\"><animation><frame tileid=\"1\" duration=\"100\"/><frame tileid=\"5\" duration=\"100\"/></animation></tile>
+ </tileset>
+ <layer id=\"1\" name=\"ground\" width=\"40\" height=\"30\"><data encoding=\"csv\">
+~a</data></layer>
+ <layer id=\"2\" name=\"glass\" width=\"40\" height=\"30\" opacity=\"0.6\" tintcolor=\"#ff80c0\"><data encoding=\"csv\">
+~a</data></layer>
+ <layer id=\"3\" name=\"far\" width=\"40\" height=\"30\" offsetx=\"5\" offsety=\"-3\" parallaxx=\"0.5\" parallaxy=\"0.75\"><data encoding=\"csv\">
+~a</data></layer>
+</map>
+" order (tb-layer-csv 0 40 30) (tb-layer-csv 1 40 30) (tb-layer-csv 2 40 30))))
+    path))
+
+(define (tb-write-maps! dir)
+  (tb-write-sheet! (make-pathname dir "sheet-a.png") 0)
+  (tb-write-sheet! (make-pathname dir "sheet-b.png") 120)
+  (map (lambda (order) (tb-write-map! dir order)) '("right-down" "left-down" "right-up" "left-up")))
+
+;; The renderer's picture of the map through a camera at (x, y) at `time`
+;; ms, with the fast path on or off.
+(define (tb-picture r tm textures x y time fast?)
+  (parameterize ((tile-layer-fast-path? fast?))
+    (render-scene! r (make-scene tilemap: tm background: '(10 20 30)
+                                 camera: (make-camera x: x y: y bounds: #f))
+                   textures: textures time: time))
+  (receive (bytes w h) (render-read-pixels r) bytes))
+
+(define (tb-differing a b)
+  (let loop ((i 0) (n 0))
+    (if (>= i (u8vector-length a))
+        n
+        (loop (+ i 4)
+              (if (and (= (u8vector-ref a i) (u8vector-ref b i))
+                       (= (u8vector-ref a (+ i 1)) (u8vector-ref b (+ i 1)))
+                       (= (u8vector-ref a (+ i 2)) (u8vector-ref b (+ i 2))))
+                  n
+                  (+ n 1))))))
+
+;; For each camera and time: (label . pixels that differ) between the two
+;; walks, and (label . pixels that are not the background) to show that
+;; something was drawn.
+(define tb-views '((0 0 0) (37 23 0) (-13 -9 150) (150 130 250) (5/2 7/3 99)))
+
+(define (tb-compare r path)
+  (let* ((tm (load-tilemap path))
+         (textures (load-tilemap-textures! r tm)))
+    (map (lambda (view)
+           (let ((fast (apply tb-picture r tm textures (append view '(#t))))
+                 (slow (apply tb-picture r tm textures (append view '(#f)))))
+             (list (sprintf "~a at ~a" (pathname-file path) view)
+                   (tb-differing fast slow)
+                   (let loop ((i 0) (n 0))
+                     (if (>= i (u8vector-length fast))
+                         n
+                         (loop (+ i 4) (if (= (u8vector-ref fast i) 10) n (+ n 1))))))))
+         tb-views)))
