@@ -433,19 +433,35 @@
   ;; texture number (from 1; 0: nothing drawn), source x y w h and the
   ;; tileset's offset x y, as gid-image and draw-cell find them. Kept per
   ;; map while the textures tex-for gives stay the same; only animated
-  ;; tiles are looked up again each frame. #f for a map it cannot list: a
-  ;; tileset whose tile count is unknown, more than 65,536 gids, a
-  ;; tileset tex-for has no texture for (draw-cell then says which).
+  ;; tiles are looked up again each frame. #f for a map it cannot list:
+  ;; more than 65,536 gids or 64 textures, a tileset tex-for has no texture
+  ;; for (draw-cell then says which).
   (define gid-tables '())               ; ((tm sheets textures table animated) ...)
   (define max-table-gids 65536)
 
-  (define (last-gid tm)
-    (foldl (lambda (m ts)
+  ;; The last gid a tileset of tm can draw. An image tileset of unknown
+  ;; tile count (make-sheet-tileset without tile-count:) reaches as far as
+  ;; its texture: a tile whose source starts below the image draws nothing.
+  (define (last-gid tm sheets)
+    (fold2 (lambda (m ts tex)
              (and m
                   (if (tileset-image ts)
-                      (let ((n (tileset-tile-count ts))) (and n (max m (+ (tileset-first-gid ts) n -1))))
+                      (let ((n (or (tileset-tile-count ts) (image-tile-count ts tex))))
+                        (and n (max m (+ (tileset-first-gid ts) n -1))))
                       (max m (+ (tileset-first-gid ts) (foldl max 0 (tileset-tile-ids ts)))))))
-           0 (tilemap-tilesets tm)))
+           0 (tilemap-tilesets tm) sheets))
+
+  (define (fold2 f init l1 l2)         ; foldl over two lists of one length
+    (if (null? l1) init (fold2 f (f init (car l1) (car l2)) (cdr l1) (cdr l2))))
+
+  (define (image-tile-count ts tex)
+    (and (texture? tex)
+         (receive (iw ih) (texture-size tex)
+           (let ((mg (or (tileset-margin ts) 0)) (sp (or (tileset-spacing ts) 0))
+                 (tw (tileset-tile-width ts)) (th (tileset-tile-height ts)))
+             (* (max 1 (or (tileset-columns ts) (quotient (+ (- iw (* 2 mg)) sp) (+ tw sp))))
+                ;; rows whose top lies in the image: ceiling((ih - mg) / (th + sp))
+                (max 0 (quotient (+ (- ih mg) th sp -1) (+ th sp))))))))
 
   (define (sheet-textures tm tex-for)
     (map (lambda (ts)
@@ -481,7 +497,7 @@
                     (cons (list->vector textures) table)))))))
 
   (define (build-gid-table tm tex-for sheets)
-    (let ((n (last-gid tm)))
+    (let ((n (last-gid tm sheets)))
       (and n (<= n max-table-gids)
            (let ((table (make-s32vector (* 8 (+ n 1)) 0))
                  (textures (let collect ((s sheets) (out '()))

@@ -73,6 +73,16 @@ static void ds_batch_quad(int q, int tex_w, int tex_h, int sx, int sy, int sw, i
   p[3].position.x = x1; p[3].position.y = y1; p[3].tex_coord.x = u1; p[3].tex_coord.y = v1;
 }
 
+/* One unturned cell as mapdraw.scm's cell walk copies it. */
+static int ds_tile_copy(SDL_Renderer *r, SDL_Texture *t, int sx, int sy, int sw, int sh,
+                        int dx, int dy, int h, int v) {
+  SDL_Rect src = { sx, sy, sw, sh }, dst = { dx, dy, sw, sh };
+  if (h || v)
+    return SDL_RenderCopyEx(r, t, &src, &dst, 0.0, NULL,
+                            (SDL_RendererFlip)((h ? SDL_FLIP_HORIZONTAL : 0) | (v ? SDL_FLIP_VERTICAL : 0)));
+  return SDL_RenderCopy(r, t, &src, &dst);
+}
+
 /* order: 0 right-down, 1 left-down, 2 right-up, 3 left-up. Answers 0, or
    SDL's negative status of a failed call. */
 static int ds_tile_cells(SDL_Renderer *r, int ntex, const Uint32 *data, int data_len,
@@ -118,20 +128,27 @@ static int ds_tile_cells(SDL_Renderer *r, int ntex, const Uint32 *data, int data
         dst.w = sw; dst.h = sh;
         status = SDL_RenderCopyEx(r, ds_tile_textures[ti], &src, &dst, 90.0, NULL, (SDL_RendererFlip)flip);
       } else if (batch) {
-        if (run != ds_tile_textures[ti] || pending == DS_BATCH_QUADS) {
+        if (run != ds_tile_textures[ti]) {
           status = ds_batch_flush(r, run, pending); pending = 0;
           if (status < 0) return status;
           run = ds_tile_textures[ti];
           if (SDL_QueryTexture(run, NULL, NULL, &tex_w, &tex_h) < 0 || tex_w <= 0 || tex_h <= 0) return -1;
         }
-        ds_batch_quad(pending++, tex_w, tex_h, sx, sy, sw, sh, (int)left, (int)(bottom - sh), h, v);
+        if (sx >= 0 && sy >= 0 && sx + sw <= tex_w && sy + sh <= tex_h) {
+          if (pending == DS_BATCH_QUADS) {
+            status = ds_batch_flush(r, run, pending); pending = 0;
+            if (status < 0) return status;
+          }
+          ds_batch_quad(pending++, tex_w, tex_h, sx, sy, sw, sh, (int)left, (int)(bottom - sh), h, v);
+        } else {
+          /* a source beyond the texture: SDL's copy cuts it (and the
+             destination with it), which texture coordinates would not */
+          status = ds_batch_flush(r, run, pending); pending = 0;
+          if (status < 0) return status;
+          status = ds_tile_copy(r, ds_tile_textures[ti], sx, sy, sw, sh, (int)left, (int)(bottom - sh), h, v);
+        }
       } else {
-        SDL_Rect src = { sx, sy, sw, sh }, dst = { (int)left, (int)(bottom - sh), sw, sh };
-        if (h || v)
-          status = SDL_RenderCopyEx(r, ds_tile_textures[ti], &src, &dst, 0.0, NULL,
-                                    (SDL_RendererFlip)((h ? SDL_FLIP_HORIZONTAL : 0) | (v ? SDL_FLIP_VERTICAL : 0)));
-        else
-          status = SDL_RenderCopy(r, ds_tile_textures[ti], &src, &dst);
+        status = ds_tile_copy(r, ds_tile_textures[ti], sx, sy, sw, sh, (int)left, (int)(bottom - sh), h, v);
       }
       if (status < 0) return status;
     }
