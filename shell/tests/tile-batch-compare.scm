@@ -119,3 +119,56 @@
                          n
                          (loop (+ i 4) (if (= (u8vector-ref fast i) 10) n (+ n 1))))))))
          tb-views)))
+
+;; Sprites drawn with the copy queue (render-batching?, the default)
+;; against one copy at a time: crowds of plain, mirrored, scaled, tinted,
+;; translucent and turned sprites of two sheets, by #:z, between boxes.
+(define (tb-sprite-scenes dir)
+  (let* ((a (make-pathname dir "sheet-a.png")) (b (make-pathname dir "sheet-b.png"))
+         (sheet-a (make-sheet-tileset a tile-width: 8 tile-height: 8 columns: 4 name: "a"))
+         (sheet-b (make-sheet-tileset b tile-width: 8 tile-height: 8 columns: 4 name: "b"))
+         (crowd (lambda (n extra)
+                  (let loop ((i 0) (out '()))
+                    (if (= i n)
+                        (reverse out)
+                        (loop (+ i 1)
+                              (cons (let ((more (extra i)))
+                                      (append (list #:x (modulo (* i 37) 190) #:y (modulo (* i 23) 140)
+                                                    #:width 8 #:height 8)
+                                              (if (memq #:color more) '() (list #:tile-id (+ 1 (modulo i 8))))
+                                              more))
+                                    out)))))))
+    (list
+     (list "plain" sheet-a sheet-b (crowd 300 (lambda (i) '())))
+     (list "mirrored and facing" sheet-a sheet-b
+           (crowd 300 (lambda (i) (case (modulo i 4) ((0) '(#:flip-x? #t)) ((1) '(#:flip-y? #t))
+                                        ((2) '(#:facing -1)) (else '())))))
+     (list "two sheets, by z, between boxes" sheet-a sheet-b
+           (crowd 300 (lambda (i) (append (list #:z (modulo i 3))
+                                          (if (odd? i) '(#:tileset "b") '())
+                                          (if (= 0 (modulo i 7)) '(#:color (200 10 10 180)) '())))))
+     (list "scaled, tinted, translucent" sheet-a sheet-b
+           (crowd 300 (lambda (i) (case (modulo i 3) ((0) '(#:scale 3/2)) ((1) '(#:tint (255 128 64)))
+                                        (else '(#:alpha 150))))))
+     (list "turned" sheet-a sheet-b
+           (crowd 200 (lambda (i) (if (even? i) (list #:angle (* 7 i)) '())))))))
+
+(define (tb-compare-sprites r dir)
+  (let ((tex-a (img-load-texture! r (make-pathname dir "sheet-a.png")))
+        (tex-b (img-load-texture! r (make-pathname dir "sheet-b.png"))))
+    (map (lambda (case)
+           (let* ((scene (make-sprite-scene tileset: (cadr case) tileset-texture: tex-a
+                                            tilesets: (list (caddr case)) background: '(10 20 30)
+                                            entities: (cadddr case)))
+                  (textures (list (cons (make-pathname dir "sheet-b.png") tex-b)
+                                  (cons (make-pathname dir "sheet-a.png") tex-a)))
+                  (picture (lambda (on?)
+                             (parameterize ((render-batching? on?))
+                               (render-scene! r scene textures: textures))
+                             (receive (bytes w h) (render-read-pixels r) bytes)))
+                  (on (picture #t)) (off (picture #f)))
+             (list (sprintf "sprites: ~a" (car case)) (tb-differing on off)
+                   (let loop ((i 0) (n 0))
+                     (if (>= i (u8vector-length on)) n
+                         (loop (+ i 4) (if (= (u8vector-ref on i) 10) n (+ n 1))))))))
+         (tb-sprite-scenes dir))))
