@@ -11,7 +11,7 @@ ROUNDS=${ROUNDS:-5}
 REPO=$(cd "$BUILD" && pwd):$(env -u CHICKEN_INSTALL_REPOSITORY chicken-install -repository)
 ms() { sed -n 's/.*: \([0-9.]*\) ms CPU per frame.*/\1/p'; }
 median() { sort -n | awk '{v[NR]=$1} END {print (NR%2 ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2)}'; }
-has_love=no; command -v love >/dev/null 2>&1 && has_love=yes
+has_love=no; [ -z "$NO_LOVE" ] && command -v love >/dev/null 2>&1 && has_love=yes
 for scene in "sprites 1000" "sprites 5000" "fancy 1000" "fancy 5000" "map"; do
   ds=""; lv=""; i=0
   while [ $i -lt "$ROUNDS" ]; do
