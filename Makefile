@@ -95,12 +95,16 @@ RUNS ?= 3
 $(BUILD)/bench-scenes: bench/scenes.scm $(LIBS)
 	cd $(BUILD) && $(CSC) $(CSC_FLAGS) ../bench/scenes.scm -o bench-scenes
 
-bench: libs $(BUILD)/bench-scenes
+$(BUILD)/bench-draw: bench/draw.scm $(LIBS)
+	cd $(BUILD) && $(CSC) $(CSC_FLAGS) ../bench/draw.scm -o bench-draw
+
+bench: libs $(BUILD)/bench-scenes $(BUILD)/bench-draw
 	$(HEADLESS) $(BUILD)/bench-scenes --runs $(RUNS) --csv bench/results.csv $(BENCH_ARGS)
 	sh tools/plot-bench.sh bench/results.csv docs/images
 	$(HEADLESS) csi -q -s bench/map-load.scm
 	$(HEADLESS) csi -q -s bench/render.scm
 	$(HEADLESS) csi -q -s bench/sprites.scm
+	sh tools/bench-draw.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD)

@@ -62,9 +62,9 @@
 (module (downstroke mapdraw)
   (render-map-layers! screen-coordinate tileset-source-rect layer-camera
    check-map-orientation tile-animation-frame object-screen-box floor-int ceiling-int
-   sine cosine tint-components)
+   sine cosine tint-components tile-layer-fast-path?)
 
-  (import scheme (chicken base) (chicken format) (chicken sort) srfi-4
+  (import scheme (chicken base) (chicken format) (chicken sort) (chicken condition) srfi-4
           (downstroke sdl2) (downstroke map))
 
   ;; A drawing coordinate as a whole pixel, floor(v), an exact integer:
@@ -380,15 +380,14 @@
                                       d? turn)))))))))
           (if ortho?
               ;; the cells whose images can meet [lx, lx+vw) x [ly, ly+vh):
+              (let ((c0 (max c-lo (+ 1 (floor-int (/ (- lx reach-r) tw)))))
+                    (c1 (min c-hi (- (ceiling-int (/ (+ lx vw reach-l) tw)) 1)))
+                    (r0 (max r-lo (floor-int (/ (- ly reach-d) th))))
+                    (r1 (min r-hi (- (ceiling-int (/ (+ ly vh reach-u) th)) 2))))
+                (unless (draw-cells-at-once! r tm data c0 c1 r0 r1 lx ly vw vh tex-for prepare! time)
+                  (for-each-cell-in-order tm c0 c1 r0 r1 draw-cell)))
               ;; image x spans [c*tw + ox, c*tw + ox + w), y spans
               ;; [(r+1)*th + oy - h, (r+1)*th + oy)
-              (for-each-cell-in-order
-               tm
-               (max c-lo (+ 1 (floor-int (/ (- lx reach-r) tw))))
-               (min c-hi (- (ceiling-int (/ (+ lx vw reach-l) tw)) 1))
-               (max r-lo (floor-int (/ (- ly reach-d) th)))
-               (min r-hi (- (ceiling-int (/ (+ ly vh reach-u) th)) 2))
-               draw-cell)
               ;; the cells whose anchors can fall in the view grown by
               ;; the tiles' reach, from the inverse of tilemap-cell-anchor
               (receive (c0 c1 r0 r1)
@@ -396,6 +395,135 @@
                                 (- ly reach-d) (+ ly vh reach-u))
                 (for-each-cell-in-order tm (max c-lo c0) (min c-hi c1)
                                         (max r-lo r0) (min r-hi r1) draw-cell)))))))
+
+  ;; An orthogonal layer's cells c0..c1 x r0..r1 in one call into C
+  ;; (sdl2.scm's render-tile-cells!, shell/tiles.c): the same copies in
+  ;; the same order as draw-cell's, each cell's image found in a table
+  ;; by gid (gid-table). #f when the call does not take the layer (the
+  ;; caller then walks the cells itself): a range lost to overflow, a map
+  ;; whose gids gid-table cannot list, numbers beyond C's ints. The
+  ;; textures the visible cells use are found first (pass 0) and get the
+  ;; layer's modulation before any is drawn, as draw-cell's prepare! does.
+  ;; (tile-layer-fast-path? #f) turns it off: the cell-by-cell walk, for
+  ;; the tests that compare the two.
+  (define tile-layer-fast-path? (make-parameter #t))
+
+  (define (draw-cells-at-once! r tm data c0 c1 r0 r1 lx ly vw vh tex-for prepare! time)
+    (let ((table (and (tile-layer-fast-path?) (exact-integer? c0) (exact-integer? c1) (exact-integer? r0) (exact-integer? r1)
+                      (gid-table tm tex-for time))))
+      (and table
+           (let* ((textures (car table)) (cells (cdr table))
+                  (used (make-u8vector (max 1 (vector-length textures)) 0))
+                  (order (case (tilemap-render-order tm)
+                           ((left-down) 1) ((right-up) 2) ((left-up) 3) (else 0))))
+             (define (call pass)
+               (render-tile-cells! r textures data (tilemap-width tm) (tilemap-height tm)
+                                   (tilemap-origin-col tm) (tilemap-origin-row tm) c0 c1 r0 r1
+                                   order cells (tilemap-tile-width tm) (tilemap-tile-height tm)
+                                   (floor-int (- lx)) (floor-int (- ly)) (ceiling-int vw) (ceiling-int vh)
+                                   pass used))
+             (and (call 0)
+                  (begin
+                    (do ((i 0 (+ i 1))) ((= i (vector-length textures)))
+                      (when (= 1 (u8vector-ref used i)) (prepare! (vector-ref textures i))))
+                    (call 1)))))))
+
+  ;; Every gid's image for tiles.c, at `time`: (textures . table), the
+  ;; table an s32vector of 8 numbers per gid (tiles.c's DS_TILE_FIELDS):
+  ;; texture number (from 1; 0: nothing drawn), source x y w h and the
+  ;; tileset's offset x y, as gid-image and draw-cell find them. Kept per
+  ;; map while the textures tex-for gives stay the same; only animated
+  ;; tiles are looked up again each frame. #f for a map it cannot list:
+  ;; more than 65,536 gids or 64 textures, a tileset tex-for has no texture
+  ;; for (draw-cell then says which).
+  (define gid-tables '())               ; ((tm sheets textures table animated) ...)
+  (define max-table-gids 65536)
+
+  ;; The last gid a tileset of tm can draw. An image tileset of unknown
+  ;; tile count (make-sheet-tileset without tile-count:) reaches as far as
+  ;; its texture: a tile whose source starts below the image draws nothing.
+  (define (last-gid tm sheets)
+    (fold2 (lambda (m ts tex)
+             (and m
+                  (if (tileset-image ts)
+                      (let ((n (or (tileset-tile-count ts) (image-tile-count ts tex))))
+                        (and n (max m (+ (tileset-first-gid ts) n -1))))
+                      (max m (+ (tileset-first-gid ts) (foldl max 0 (tileset-tile-ids ts)))))))
+           0 (tilemap-tilesets tm) sheets))
+
+  (define (fold2 f init l1 l2)         ; foldl over two lists of one length
+    (if (null? l1) init (fold2 f (f init (car l1) (car l2)) (cdr l1) (cdr l2))))
+
+  (define (image-tile-count ts tex)
+    (and (texture? tex)
+         (receive (iw ih) (texture-size tex)
+           (let ((mg (or (tileset-margin ts) 0)) (sp (or (tileset-spacing ts) 0))
+                 (tw (tileset-tile-width ts)) (th (tileset-tile-height ts)))
+             (* (max 1 (or (tileset-columns ts) (quotient (+ (- iw (* 2 mg)) sp) (+ tw sp))))
+                ;; rows whose top lies in the image: ceiling((ih - mg) / (th + sp))
+                (max 0 (quotient (+ (- ih mg) th sp -1) (+ th sp))))))))
+
+  (define (sheet-textures tm tex-for)
+    (map (lambda (ts)
+           (if (tileset-image ts)
+               (tex-for ts (image-source (tileset-image ts)))
+               (map (lambda (t) (and (tile-image t) (tex-for ts (image-source (tile-image t)))))
+                    (tileset-tiles ts))))
+         (tilemap-tilesets tm)))
+
+  (define (same-textures? a b)
+    (cond ((and (pair? a) (pair? b)) (and (same-textures? (car a) (car b)) (same-textures? (cdr a) (cdr b))))
+          (else (eq? a b))))
+
+  (define (gid-table tm tex-for time)
+    (let ((sheets (handle-exceptions e #f (sheet-textures tm tex-for)))
+          (entry (assq tm gid-tables)))
+      (and sheets
+           (let ((entry (if (and entry (same-textures? (cadr entry) sheets))
+                            entry
+                            (let ((new (build-gid-table tm tex-for sheets)))
+                              (set! gid-tables
+                                (if new
+                                    (cons new (let keep ((l gid-tables) (n 3))
+                                                (cond ((or (null? l) (= n 0)) '())
+                                                      ((eq? (caar l) tm) (keep (cdr l) n))
+                                                      (else (cons (car l) (keep (cdr l) (- n 1)))))))
+                                    gid-tables))
+                              new))))
+             (and entry
+                  (let ((textures (caddr entry)) (table (cadddr entry)))
+                    (for-each (lambda (gid) (gid-entry! table textures tm gid tex-for time))
+                              (car (cddddr entry)))
+                    (cons (list->vector textures) table)))))))
+
+  (define (build-gid-table tm tex-for sheets)
+    (let ((n (last-gid tm sheets)))
+      (and n (<= n max-table-gids)
+           (let ((table (make-s32vector (* 8 (+ n 1)) 0))
+                 (textures (let collect ((s sheets) (out '()))
+                             (cond ((texture? s) (if (memq s out) out (append out (list s))))
+                                   ((pair? s) (collect (cdr s) (collect (car s) out)))
+                                   (else out))))
+                 (animated '()))
+             (and (<= (length textures) 64)
+                  (begin
+                    (do ((gid 1 (+ gid 1))) ((> gid n))
+                      (let* ((ts (tilemap-tileset-for tm gid))
+                             (info (and ts (tileset-tile ts (- gid (tileset-first-gid ts))))))
+                        (when (and info (pair? (tile-animation info)))
+                          (set! animated (cons gid animated)))
+                        (gid-entry! table textures tm gid tex-for 0)))
+                    (list tm sheets textures table animated)))))))
+
+  (define (gid-entry! table textures tm gid tex-for time)
+    (receive (tex sx sy sw sh) (gid-image tm gid tex-for time)
+      (let ((ts (tilemap-tileset-for tm gid)) (i (* 8 gid)))
+        (define (put! k v) (s32vector-set! table (+ i k) (if (and (fixnum? v) (< (abs v) 536870912)) v 0)))
+        (put! 0 (if tex (let find ((l textures) (k 1))
+                          (cond ((null? l) 0) ((eq? (car l) tex) k) (else (find (cdr l) (+ k 1)))))
+                    0))
+        (put! 1 sx) (put! 2 sy) (put! 3 sw) (put! 4 sh)
+        (put! 5 (if ts (tileset-offset-x ts) 0)) (put! 6 (if ts (tileset-offset-y ts) 0)))))
 
   ;; The screen positions at which copies of a span of `size` pixels
   ;; starting at `start` are drawn to cover [0, view) when repeated, or

@@ -422,12 +422,15 @@
 
   ;; Entities in list order, or, when one has #:z, by #:z (default 0),
   ;; ties in list order (a stable sort).
+  ;; On an accelerated renderer the unturned copies of a run of entities
+  ;; sharing a texture go to SDL as one call (sdl2.scm's render-batched).
   (define (render-entities! r entities cx cy tileset texture #!optional (sheet-for no-sheets))
-    (for-each (lambda (e) (draw-entity! r e cx cy tileset texture sheet-for))
-              (if (any-has-key? entities #:z)
-                  (map cdr (sort (map (lambda (e) (cons (sprite-number e #:z 0) e)) entities)
-                                 (lambda (a b) (< (car a) (car b)))))
-                  entities)))
+    (let ((ordered (if (any-has-key? entities #:z)
+                       (map cdr (sort (map (lambda (e) (cons (sprite-number e #:z 0) e)) entities)
+                                      (lambda (a b) (< (car a) (car b)))))
+                       entities)))
+      (render-batched r (lambda () (for-each (lambda (e) (draw-entity! r e cx cy tileset texture sheet-for))
+                                             ordered)))))
 
   ;;; ------------------------------------------------------------------
   ;;; Scenes

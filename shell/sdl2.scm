@@ -67,6 +67,8 @@
    render-draw-color-set! render-draw-blend-mode-set!
    render-clear! render-fill-rect! render-draw-rect! render-copy!
    render-present! render-read-pixels
+   ;; for (downstroke mapdraw): a tile layer's cells in one call
+   render-tile-cells! render-batched render-batching?
    ;; textures
    img-load-texture! destroy-texture! texture? texture-alive? texture-size max-image-pixels
    texture-alpha-mod-set! texture-alpha-mod texture-blend-mode-set!
@@ -204,11 +206,15 @@ static double ds_dest_limit(SDL_Renderer *r) {
   return s > 64.0 ? 536870912.0 / s : 8388608.0;
 }
 
+static void ds_q_flush(void);
+static int ds_q_copy(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *dst, int h, int v);
+
 /* Fill (which 0) or outline (1) a rect, or the whole target. */
 static int downstroke_rect(SDL_Renderer *r, int which, int whole,
                            double x, double y, double w, double h) {
   SDL_Rect rc;
   double limit = ds_dest_limit(r);
+  ds_q_flush();
   if (!whole && !(ds_span(x, w, limit, &rc.x, &rc.w) && ds_span(y, h, limit, &rc.y, &rc.h)))
     return 0;
   return which ? SDL_RenderDrawRect(r, whole ? NULL : &rc)
@@ -225,6 +231,7 @@ static int downstroke_rect(SDL_Renderer *r, int which, int whole,
 
 static int ds_copy_rect(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *dst,
                         double angle, int flip) {
+  ds_q_flush();
   if (flip == 0 && angle == 0.0) return SDL_RenderCopy(r, t, src, dst);
   return SDL_RenderCopyEx(r, t, src, dst, angle, NULL, (SDL_RendererFlip)flip);
 }
@@ -256,6 +263,7 @@ static int downstroke_copy(SDL_Renderer *r, SDL_Texture *t, int use_src,
    and render-copy! found to be small fixnums near the view: as they are. */
 static int downstroke_rect_ints(SDL_Renderer *r, int which, int x, int y, int w, int h) {
   SDL_Rect rc = { x, y, w, h };
+  ds_q_flush();
   return which ? SDL_RenderDrawRect(r, &rc) : SDL_RenderFillRect(r, &rc);
 }
 
@@ -264,6 +272,7 @@ static int downstroke_copy_ints(SDL_Renderer *r, SDL_Texture *t, int use_src,
                                 double angle, int hflip, int vflip) {
   SDL_Rect src = { sx, sy, sw, sh }, dst = { dx, dy, dw, dh };
   int flip = (hflip ? SDL_FLIP_HORIZONTAL : 0) | (vflip ? SDL_FLIP_VERTICAL : 0);
+  if (angle == 0.0 && use_src && ds_q_copy(r, t, &src, &dst, hflip, vflip)) return 0;
   return ds_copy_rect(r, t, use_src ? &src : NULL, &dst, angle, flip);
 }
 
@@ -272,6 +281,68 @@ static void downstroke_view(SDL_Renderer *r, int *w, int *h) {
   SDL_Rect vp;
   SDL_RenderGetViewport(r, &vp);
   *w = vp.w; *h = vp.h;
+}
+
+#include "shell/tiles.c"
+
+/* The copy queue (render-batched): between ds_q_begin and ds_q_end, an
+   unturned copy of a source inside its texture, on the accelerated
+   renderer being batched, is kept as a quad; a run of one texture goes to
+   SDL as one SDL_RenderGeometry call (tiles.c's ds_batch_flush: the
+   texture's modulation as every vertex's colour). Anything else drawn or
+   changed on the renderer sends the run first (ds_q_flush: sdl2.scm calls
+   it wherever a renderer or texture is used), so the order of what is
+   drawn never changes. */
+static SDL_Renderer *ds_q_r = NULL;
+static SDL_Texture *ds_q_t = NULL;
+static int ds_q_n = 0, ds_q_tw = 1, ds_q_th = 1, ds_q_status = 0;
+
+static void ds_q_flush(void) {
+  if (ds_q_n > 0) {
+    int st = ds_batch_flush(ds_q_r, ds_q_t, ds_q_n);
+    if (st < 0) ds_q_status = st;
+  }
+  ds_q_n = 0;
+}
+
+static void ds_q_begin(SDL_Renderer *r) { ds_q_flush(); ds_q_r = r; ds_q_t = NULL; ds_q_status = 0; }
+
+static int ds_q_end(void) {
+  int st;
+  ds_q_flush();
+  ds_q_r = NULL; ds_q_t = NULL;
+  st = ds_q_status; ds_q_status = 0;
+  return st;
+}
+
+/* 1 when the copy was queued. */
+static int ds_q_copy(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *dst, int h, int v) {
+  if (r != ds_q_r || !src || !dst || dst->w <= 0 || dst->h <= 0) return 0;
+  if (t != ds_q_t || ds_q_n == DS_BATCH_QUADS) {
+    ds_q_flush();
+    ds_q_t = t;
+    if (SDL_QueryTexture(t, NULL, NULL, &ds_q_tw, &ds_q_th) < 0 || ds_q_tw <= 0 || ds_q_th <= 0) {
+      ds_q_t = NULL;
+      return 0;
+    }
+  }
+  if (src->x < 0 || src->y < 0 || src->w <= 0 || src->h <= 0
+      || src->x + src->w > ds_q_tw || src->y + src->h > ds_q_th) { ds_q_flush(); return 0; }
+  {
+    SDL_Vertex *p = &ds_batch_verts[ds_q_n * 4];
+    float x0 = (float)dst->x, y0 = (float)dst->y;
+    float x1 = (float)(dst->x + dst->w), y1 = (float)(dst->y + dst->h);
+    float u0 = (float)src->x / ds_q_tw, u1 = (float)(src->x + src->w) / ds_q_tw;
+    float v0 = (float)src->y / ds_q_th, v1 = (float)(src->y + src->h) / ds_q_th, tmp;
+    if (h) { tmp = u0; u0 = u1; u1 = tmp; }
+    if (v) { tmp = v0; v0 = v1; v1 = tmp; }
+    p[0].position.x = x0; p[0].position.y = y0; p[0].tex_coord.x = u0; p[0].tex_coord.y = v0;
+    p[1].position.x = x1; p[1].position.y = y0; p[1].tex_coord.x = u1; p[1].tex_coord.y = v0;
+    p[2].position.x = x0; p[2].position.y = y1; p[2].tex_coord.x = u0; p[2].tex_coord.y = v1;
+    p[3].position.x = x1; p[3].position.y = y1; p[3].tex_coord.x = u1; p[3].tex_coord.y = v1;
+  }
+  ds_q_n++;
+  return 1;
 }
 EOF
 )
@@ -406,7 +477,21 @@ EOF
       (error who (sprintf "~a: not a live window" who) w))
     (window-ptr w))
 
+  ;; (render-batched r thunk): calls thunk with r's unturned copies of a
+  ;; source inside its texture kept in C and sent as one
+  ;; SDL_RenderGeometry call per run of one texture (the copy queue of
+  ;; the C above), on an accelerated renderer; as a plain call on a
+  ;; software one (SDL's software renderer draws geometry otherwise than
+  ;; its copies). Whatever else uses the renderer or a texture meanwhile
+  ;; (live-renderer, live-texture and the C helpers flush) sends the
+  ;; queued run first, so nothing changes order.
+  (define batching? #f)
+  (define q-flush! (foreign-lambda void "ds_q_flush"))
+  (define-inline (flush-batch!) (when batching? (q-flush!)))
   (define (live-renderer who r)
+    (flush-batch!)
+    (live-renderer* who r))
+  (define (live-renderer* who r)
     (unless (and (renderer? r) (renderer-alive? r))
       (error who (sprintf "~a: not a live renderer" who) r))
     (renderer-ptr r))
@@ -415,7 +500,30 @@ EOF
   ;; for other modules that call SDL libraries on it, such as SDL_ttf.
   (define (renderer-pointer who r) (live-renderer who r))
 
+  ;; (render-batching? #f): render-batched only calls its thunk (to
+  ;; compare the two, as shell/tests/tile-batch-test.scm does).
+  (define render-batching? (make-parameter #t))
+  (define (render-batched r thunk)
+    (if (or batching? (renderer-software? r) (not (render-batching?)))
+        (thunk)
+        (let ((rp (live-renderer 'render-batched r)))
+          (dynamic-wind
+           (lambda ()
+             ((foreign-lambda void "ds_q_begin" c-pointer) rp)
+             (set! batching? #t))
+           thunk
+           (lambda ()
+             (set! batching? #f)
+             (check-status 'render-batched "SDL_RenderGeometry"
+                           ((foreign-lambda int "ds_q_end"))))))))
+
+
+
   (define (live-texture who t)
+    (flush-batch!)
+    (live-texture* who t))
+  ;; without sending the queued copies: render-copy!'s, which may queue one
+  (define (live-texture* who t)
     (unless (and (texture? t) (texture-alive? t))
       (error who (sprintf "~a: not a live texture" who) t))
     (texture-ptr t))
@@ -480,6 +588,7 @@ EOF
   (define (destroy-texture! t)
     (let ((p (texture-ptr t)))
       (when p
+        (flush-batch!)
         (texture-ptr-set! t #f)
         (set! count-textures (- count-textures 1))
         ;; A dead renderer has already freed its textures.
@@ -492,6 +601,7 @@ EOF
     (let ((p (renderer-ptr r))
           (alive (renderer-alive? r)))
       (when p
+        (flush-batch!)
         (renderer-ptr-set! r #f)
         (set! count-renderers (- count-renderers 1))
         (when alive
@@ -782,8 +892,8 @@ EOF
   ;; symbols horizontal and vertical; angle in degrees, clockwise, about
   ;; the centre of dst.
   (define/keywords (render-copy! r t src dst #!key (flip '()) (angle 0))
-    (let ((rp (live-renderer 'render-copy! r))
-          (tp (live-texture 'render-copy! t))
+    (let ((rp (live-renderer* 'render-copy! r))
+          (tp (live-texture* 'render-copy! t))
           (h? (and (memq 'horizontal flip) #t))
           (v? (and (memq 'vertical flip) #t)))
       (unless (eq? (texture-renderer t) r)
@@ -892,6 +1002,48 @@ EOF
                                               #t x0 y0 (- x1 x0) (- y1 y0) 0. h? v?)))))
                 ys))
              xs))))))
+
+;;; (render-tile-cells! r textures data width height col0 row0 c0 c1 r0 r1
+  ;;;                     order table tw th fx fy vw vh pass used)
+  ;;; The cells c0..c1 x r0..r1 of an orthogonal tile layer (data: its
+  ;;; u32vector of width x height cells, the first at col0 row0) drawn as
+  ;;; (downstroke mapdraw) draws them, in one call (shell/tiles.c says what
+  ;;; each number is). textures: a vector of this renderer's textures, the
+  ;;; table's texture numbers counting from 1; table: an s32vector. Pass 0
+  ;;; only marks in the u8vector `used` the textures the visible cells
+  ;;; need; pass 1 draws, in runs of one SDL_RenderGeometry call per
+  ;;; texture on an accelerated renderer. Answers #f, drawing nothing, for
+  ;;; what it does not take (more than 64 textures, numbers beyond C's
+  ;;; ints): the caller then draws cell by cell.
+  (define tile-cells
+    (foreign-lambda int "ds_tile_cells" c-pointer int u32vector int int int int int
+                    int int int int int s32vector int int int int int int int int bool u8vector))
+  (define max-tile-textures 64)
+  (define c-int-limit 536870912)
+  (define (c-int? . vs)
+    (let loop ((vs vs))
+      (or (null? vs)
+          (and (fixnum? (car vs)) (fx< (car vs) c-int-limit) (fx> (car vs) (fxneg c-int-limit))
+               (loop (cdr vs))))))
+  (define (render-tile-cells! r textures data width height col0 row0 c0 c1 r0 r1
+                              order table tw th fx fy vw vh pass used)
+    (let ((rp (live-renderer 'render-tile-cells! r))
+          (n (vector-length textures)))
+      (and (fx<= n max-tile-textures)
+           (fx>= (u8vector-length used) n)
+           (c-int? width height col0 row0 c0 c1 r0 r1 order tw th fx fy vw vh pass)
+           (c-int? (* tw (+ (abs col0) width 1)) (* th (+ (abs row0) height 1)))
+           (begin
+             (do ((i 0 (fx+ i 1))) ((fx= i n))
+               (let ((t (vector-ref textures i)))
+                 (unless (eq? (texture-renderer t) r)
+                   (error 'render-tile-cells! "the texture belongs to another renderer" t))
+                 ((foreign-lambda void "ds_tiles_texture" int c-pointer) i (live-texture 'render-tile-cells! t))))
+             (check-status 'render-tile-cells! "SDL_RenderGeometry"
+                           (tile-cells rp n data (u32vector-length data) width height col0 row0
+                                       c0 c1 r0 r1 order table (s32vector-length table) tw th
+                                       fx fy vw vh pass (not (renderer-software? r)) used))
+             #t))))
 
   (define (render-view-size r)
     (let-location ((w int 0) (h int 0))

@@ -9,6 +9,9 @@ fonts-dejavu-core xvfb xauth tiled"
 # emscripten, with node; chromium and python3 for the browser tests; zip for
 # a jam page).
 [ "$1" = "web" ] && PACKAGES="$PACKAGES emscripten nodejs chromium zip python3"
+# `install-deps.sh bench`: LÖVE 11.4, the other side of bench/draw.scm
+# (bench/love; docs/performance.org, "Drawing against LÖVE"). Not for CI.
+[ "$1" = "bench" ] && PACKAGES="$PACKAGES love"
 
 missing=""
 for p in $PACKAGES; do
