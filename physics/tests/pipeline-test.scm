@@ -32,18 +32,24 @@
       ((2) (/ n (pl-pick 2 3 4 10)))
       (else (+ n (/ (pl-rand 1000) 1000.0))))))
 
+;; Half the maps have slope tiles (3 to 6: 45 and 22.5 degrees, both
+;; ways; docs/physics.org, "Slopes"), which the fast path hands to the
+;; readable steps.
 (define (pl-map)
-  (list->tilemap
-   (let rows ((j 0))
-     (if (= j 12)
-         '()
-         (cons (let cols ((i 0))
-                 (if (= i 12)
-                     '()
-                     (cons (cond ((or (= j 11) (pl-chance 15)) 1) ((pl-chance 10) 2) (else 0))
-                           (cols (+ i 1)))))
-               (rows (+ j 1)))))
-   one-way: '(2)))
+  (let ((slopes? (pl-chance 50)))
+    (list->tilemap
+     (let rows ((j 0))
+       (if (= j 12)
+           '()
+           (cons (let cols ((i 0))
+                   (if (= i 12)
+                       '()
+                       (cons (cond ((or (= j 11) (pl-chance 15)) 1) ((pl-chance 10) 2)
+                                   ((and slopes? (pl-chance 12)) (pl-pick 3 4 5 6))
+                                   (else 0))
+                             (cols (+ i 1)))))
+                 (rows (+ j 1)))))
+     one-way: '(2) slopes: '((3 0 16) (4 16 0) (5 0 8) (6 8 16)))))
 
 ;; A random entity: every key appears only sometimes, in a random order.
 (define (pl-entity k)
