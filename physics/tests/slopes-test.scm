@@ -175,3 +175,20 @@
                                 (sl-walk contract-pipeline tm e (car vxs) 60))
                         (loop (cdr vxs))))))))
    (list sl-hill45 sl-hill22) '("45 degrees" "22.5 degrees")))
+
+;; The platformer demo's hill (demo/levels/platformer.tmx, slopes.tsx: two
+;; tiles by properties, one by its collision polygon, flipped for the way
+;; down), walked over as the demo's player walks (2 px/frame).
+(test-group "the platformer demo's hill"
+  (let ((tm (load-tilemap "../demo/levels/platformer.tmx")))
+    (test "up 45 degrees, a flat top, down a 22.5 degree pair (flipped tiles)"
+          '((0 . 16) #f #f (16 . 8) (8 . 0))
+          (map (lambda (c) (tilemap-slope tm c 12)) '(48 49 50 51 52)))
+    (test "a walk over it: every frame the foot on the floor, on the ground" '(0 0)
+          (let loop ((fs (sl-walk engine-pipeline tm (sl-body 736 192 16 16 2) 2 60)) (off 0) (air 0))
+            (if (null? fs)
+                (list off air)
+                (let ((f (car fs)))
+                  (loop (cdr fs)
+                        (if (= (+ (cadr f) 16) (sl-floor tm (+ (car f) 8))) off (+ off 1))
+                        (if (caddr f) air (+ air 1)))))))))
