@@ -129,9 +129,7 @@
                            (make-axis-grid bytes (tilemap-width tm) 1
                                            (tilemap-origin-row tm) (tilemap-origin-col tm)
                                            (tilemap-height tm) (tilemap-width tm))
-                           ;; a map with slopes goes by the readable steps
-                           (and (not (tilemap-slopes tm))
-                                (fixnum? (tilemap-width tm)) (fixnum? (tilemap-height tm))
+                           (and (fixnum? (tilemap-width tm)) (fixnum? (tilemap-height tm))
                                 (fixnum? (tilemap-origin-col tm)) (fixnum? (tilemap-origin-row tm))
                                 (vector (tilemap-width tm) (tilemap-height tm)
                                         (tilemap-origin-col tm) (tilemap-origin-row tm)
@@ -148,8 +146,7 @@
   (define (column-grid tm) (vector-ref (grids tm) 0))
   (define (row-grid tm) (vector-ref (grids tm) 1))
   ;; #(cols rows origin-col origin-row tile-width tile-height), or #f for a
-  ;; map whose size or origin is not a fixnum, or that has slope cells (the
-  ;; C code cannot take it: docs/physics.org, "Slopes").
+  ;; map whose size or origin is not a fixnum (the C code cannot take it).
   (define (pass-map tm) (vector-ref (grids tm) 2))
   ;; Whether the map has one-way cells at all.
   (define (one-way-map? tm) (vector-ref (grids tm) 3))

@@ -162,15 +162,22 @@
 ;; several tile sizes, with their origin anywhere, and bodies anywhere
 ;; (far outside the map too, and around the path's +-2^40 limit, where
 ;; they go back to generic arithmetic).
+;; Half of them have slope tiles (3 to 6), which the kernel leaves to the
+;; readable steps for a body near one (physics/motion.c, ds_near_slope).
 (define (pl-origin-map)
   (let* ((w (+ 1 (pl-rand 14))) (h (+ 1 (pl-rand 14)))
          (density (pl-pick 5 30 60 80))
+         (slopes? (pl-chance 50))
          (data (make-u32vector (* w h) 0)))
     (do ((i 0 (+ i 1))) ((= i (* w h)))
-      (when (pl-chance density) (u32vector-set! data i (pl-pick 1 1 1 2))))
-    (make-tilemap w h (pl-pick 16 8 10 16 1) (pl-pick 16 8 12 16 1)
-                  (list (make-layer "solid" w h data)) one-way: '(2)
-                  origin-col: (- (pl-rand 12) 6) origin-row: (- (pl-rand 12) 6))))
+      (when (pl-chance density)
+        (u32vector-set! data i (if (and slopes? (pl-chance 30)) (pl-pick 3 4 5 6) (pl-pick 1 1 1 2)))))
+    (let ((th (pl-pick 16 8 12 16 1)))
+      (make-tilemap w h (pl-pick 16 8 10 16 1) th
+                    (list (make-layer "solid" w h data)) one-way: '(2)
+                    slopes: (list (list 3 0 th) (list 4 th 0) (list 5 0 (quotient th 2))
+                                  (list 6 (quotient th 2) th))
+                    origin-col: (- (pl-rand 12) 6) origin-row: (- (pl-rand 12) 6)))))
 
 (define (pl-fixnum range)
   (case (pl-rand 24)
