@@ -53,8 +53,9 @@ static int ds_tile_stop(long v, long pn, long pd, long size, long an, long ad, l
   for (line = from; ; line += forward ? 1 : -1) {
     const unsigned char *base = bytes + line * ls;
     for (cell = lo; cell <= hi; cell++)
-      if (base[cell * cs] == 1 ||
-          (base[cell * cs] == 2 && one_way && (line + line_origin) * tile * pd >= start_bottom)) {
+      if (base[cell * cs] &&      /* most cells are empty: one test */
+          (base[cell * cs] == 1 ||
+           (one_way && base[cell * cs] == 2 && (line + line_origin) * tile * pd >= start_bottom))) {
         long at = line + line_origin;
         *stop = forward ? at * tile - size : (at + 1) * tile;
         return 1;
@@ -169,7 +170,7 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
     return C_fix(-1);                  /* d * tile could overflow */
   int accelerate = grav && !(ay == 0 && (flags & DS_HAS_AY));
   long vy = grav ? (accelerate ? vy0 + ay : vy0) + g : vy0;
-  if (has_map && (flags & DS_SLOPES) &&
+  if ((flags & DS_SLOPES) &&          /* set only with a map */
       ds_near_slope(bytes, cols, rows, col0, row0, tw, th, xn, xd, w, vx, yn, yd, h, vy))
     return C_fix(-1);
   if (has_map && swept && (vx != 0 || vy != 0) &&
