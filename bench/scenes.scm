@@ -1,9 +1,9 @@
-;;; The benchmark scenes of docs/performance.org (S1 to S6, written down
+;;; The benchmark scenes of docs/performance.org (S1 to S7, written down
 ;;; under "The scenes" there), run by `make bench`.
 ;;; Prints a table, the checksum lines of each scene, and writes one CSV
 ;;; row per (scene, mode, n or speed):
 ;;;   scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct
-;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 S4 S5 S6 steps ...]
+;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 S4 S5 S6 S7 steps ...]
 
 (import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
         (chicken string) (chicken sort) (chicken gc) (chicken io) (chicken condition)
@@ -20,7 +20,9 @@
 
 ;;; The map of S1: border and 12% of the cells solid, one draw per cell.
 (define (generate-map w h)
-  (list->tilemap
+  (list->tilemap (generate-rows w h)))
+
+(define (generate-rows w h)
    (let rows ((j 0))
      (if (= j h) '()
          (cons (let cols ((i 0))
@@ -30,7 +32,7 @@
                                      (< (modulo r 100) 12))
                                  1 0)
                              (cols (+ i 1))))))
-               (rows (+ j 1)))))))
+               (rows (+ j 1))))))
 
 (define (median xs)
   (let ((v (list->vector (sort xs <))))
@@ -77,6 +79,10 @@
 (define (s1-scene n mode)
   (reseed!)
   (set! s1-map (generate-map 256 256))
+  (s1-movers n mode))
+
+;; S1's bodies on s1-map, and their speeds.
+(define (s1-movers n mode)
   (let loop ((k 0) (movers '()) (speeds '()))
     (if (= k n)
         (values (make-scene tilemap: s1-map collision-mode: mode entities: (reverse movers))
@@ -94,6 +100,36 @@
                             movers)
                       (cons s speeds))))))))
 
+;;; S7: S1 with a quarter of its map's solid tiles turned into slopes
+;;; (docs/performance.org, "S7"): the same draws, the same bodies (placed
+;;; by S1's map), then, in row-major order, every fourth solid cell off the
+;;; border (the 4th, 8th, ...) becomes a slope, taking in turn the tiles
+;;; 3 (0 -> 16 px), 4 (16 -> 0), 5 (0 -> 8) and 6 (8 -> 16).
+(define s7-slopes '((3 0 16) (4 16 0) (5 0 8) (6 8 16)))
+(define (s7-map rows)
+  (let ((h (length rows)) (w (length (car rows))) (count 0))
+    (list->tilemap
+     (let each-row ((rows rows) (j 0))
+       (if (null? rows) '()
+           (cons (let each ((cells (car rows)) (i 0))
+                   (if (null? cells) '()
+                       (cons (if (and (= (car cells) 1) (< 0 i (- w 1)) (< 0 j (- h 1)))
+                                 (begin (set! count (+ count 1))
+                                        (if (= 0 (modulo count 4))
+                                            (+ 3 (modulo (- (quotient count 4) 1) 4))
+                                            1))
+                                 (car cells))
+                             (each (cdr cells) (+ i 1)))))
+                 (each-row (cdr rows) (+ j 1)))))
+     slopes: s7-slopes)))
+
+(define (s7-scene n mode)
+  (reseed!)
+  (let ((rows (generate-rows 256 256)))
+    (set! s1-map (list->tilemap rows))
+    (let-values (((scene speeds) (s1-movers n mode)))
+      (values (update-scene scene tilemap: (s7-map rows)) speeds))))
+
 (define (s1-logic scene speeds f)
   (let loop ((es (scene-entities scene)) (k 0) (out '()))
     (if (null? es)
@@ -109,7 +145,7 @@
                       e)))
           (loop (cdr es) (+ k 1) (cons e out))))))
 
-(define (run-s1 n modes runs)
+(define (run-s1 n modes runs #!optional (scene-name "S1") (build s1-scene))
   ;; One timed run of each mode in turn, `runs` times over, so that a slow
   ;; spell of a noisy machine falls on every mode alike and the ratios
   ;; between modes stay meaningful.
@@ -119,25 +155,25 @@
                      (repeat (+ r 1)
                              (map (lambda (mode-times)
                                     (cons (car mode-times)
-                                          (cons (s1-run n (car mode-times) (= r 0))
+                                          (cons (s1-run n (car mode-times) (= r 0) scene-name build)
                                                 (cdr mode-times))))
                                   times))))))
     (for-each (lambda (mode-times)
                 (let ((ms (/ (median (cdr mode-times)) 600.0)))
-                  (report! "S1" (car mode-times) n #f 600 ms (/ (* 1000 ms) n) #f #f)))
+                  (report! scene-name (car mode-times) n #f 600 ms (/ (* 1000 ms) n) #f #f)))
               times)
     (printf "  peak resident set of the process so far: ~a MB~%" (peak-megabytes))))
 
 ;; One run of 660 frames, the last 600 timed (ms); the first run of each
 ;; mode prints the checksum line.
-(define (s1-run n mode checksum?)
-  (let-values (((scene speeds) (s1-scene n mode)))
+(define (s1-run n mode checksum? #!optional (scene-name "S1") (build s1-scene))
+  (let-values (((scene speeds) (build n mode)))
     (let frames ((f 0) (scene scene) (start #f))
       (cond ((= f 660)
              (when checksum?
                (let ((es (scene-entities scene)))
-                 (printf "checksum S1 ~a n=~a sum-x=~a sum-y=~a on-ground=~a~%"
-                         mode n (sum #:x es) (sum #:y es)
+                 (printf "checksum ~a ~a n=~a sum-x=~a sum-y=~a on-ground=~a~%"
+                         scene-name mode n (sum #:x es) (sum #:y es)
                          (length (filter-on-ground es)))))
              (let ((ms (- (now) start)))
                (report-gc! (current-gc-milliseconds) ms)
@@ -420,13 +456,18 @@
 (define (filter-scenes args)
   (let loop ((as args) (out '()))
     (cond ((null? as) out)
-          ((member (car as) '("S1" "S2" "S3" "S4" "S5" "S6" "steps")) (loop (cdr as) (cons (car as) out)))
+          ((member (car as) '("S1" "S2" "S3" "S4" "S5" "S6" "S7" "steps")) (loop (cdr as) (cons (car as) out)))
           (else (loop (cdr as) out)))))
 
 (when (wanted? "S1")
   (let ((ms (modes '(discrete swept))))
     (unless (null? ms)
       (for-each (lambda (n) (run-s1 n ms runs))
+                (sizes (if quick? '(100 1000) '(100 1000 10000)))))))
+(when (wanted? "S7")
+  (let ((ms (modes '(discrete swept))))
+    (unless (null? ms)
+      (for-each (lambda (n) (run-s1 n ms runs "S7" s7-scene))
                 (sizes (if quick? '(100 1000) '(100 1000 10000)))))))
 (when (wanted? "steps")
   (run-s1-steps (or only-n (if quick? 1000 10000)) runs))

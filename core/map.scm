@@ -67,7 +67,7 @@
    tilemap-screen-size tilemap-cell-anchor tilemap-screen-point
    tilemap-layers tilemap-layer tilemap-properties
    tilemap-tile-at tilemap-cell-at tilemap-flags-at tilemap-solid? tilemap-one-way? tilemap-solid-grid
-   tilemap-kind tilemap-ladder? tilemap-ladder-top? tile-property-table
+   tilemap-kind tilemap-ladder? tilemap-ladder-top? tilemap-slope tile-property-table
    ;; map attributes
    tilemap-source tilemap-version tilemap-tiled-version tilemap-class
    tilemap-orientation tilemap-render-order tilemap-infinite?
@@ -107,7 +107,9 @@
    ;; for sibling modules only: constructors for the file loader ((downstroke
    ;; tmx)); games build maps with make-tilemap, list->tilemap and make-layer
    %make-layer make-image make-tile make-tileset make-map-object tileset-tile-table
-   tileset-tile-ids gid-mask check-integer)
+   tileset-tile-ids gid-mask check-integer
+   ;; for the physics only: the slope heights by cell, or #f (tilemap-slope)
+   tilemap-slopes)
 
 
   (import (downstroke keywords) (only (downstroke numbers) check-finite))
@@ -289,7 +291,7 @@
 
   (define-record-type tilemap
     (%make-tilemap width height tile-width tile-height layers properties solid
-                   origin-col origin-row info tilesets layer-tree kinds ladders)
+                   origin-col origin-row info tilesets layer-tree kinds ladders slopes)
     tilemap?
     (width tilemap-width)
     (height tilemap-height)
@@ -304,7 +306,8 @@
     (tilesets tilemap-tilesets)
     (layer-tree tilemap-layer-tree)     ; every layer, as nested in Tiled
     (kinds tilemap-kinds)               ; #f, or (u8vector grid . vector of kind symbols)
-    (ladders tilemap-ladders))          ; #f, or a u8vector: 1 on each ladder cell
+    (ladders tilemap-ladders)           ; #f, or a u8vector: 1 on each ladder cell
+    (slopes tilemap-slopes))            ; #f, or a vector by cell of (left . right) heights
 
   (define (info-ref tm key default)
     (let ((p (assq key (tilemap-info tm)))) (if p (cdr p) default)))
@@ -368,7 +371,7 @@
                      layers (tilemap-properties tm) (tilemap-solid-grid tm)
                      (tilemap-origin-col tm) (tilemap-origin-row tm)
                      (tilemap-info tm) (tilemap-tilesets tm) tree (tilemap-kinds tm)
-                     (tilemap-ladders tm))))
+                     (tilemap-ladders tm) (tilemap-slopes tm))))
 
   ;; Where a tile object's image hangs from its (x, y): the fractions of
   ;; its width and height left of and above that point, (values ax ay).
@@ -451,7 +454,9 @@
     '(("collides" . bool)       ; #f: never solid, whatever its layer
       ("one-way" . bool)        ; a jump-through platform
       ("kind" . string)         ; what the cell is, for the game (tilemap-kind)
-      ("ladder" . bool)))       ; a climbable cell, not solid (docs/physics.org, "Ladders")
+      ("ladder" . bool)         ; a climbable cell, not solid (docs/physics.org, "Ladders")
+      ("slope-left" . int)      ; a slope: its floor's height (px) at the tile's left edge
+      ("slope-right" . int)))   ; ... and at its right edge (both or neither)
 
   ;; A name folded for comparison: lower case, without '-', '_' or spaces.
   (define (fold-name name)
@@ -492,15 +497,62 @@
   (define (tileset-origin ts map-source)
     (or (tileset-source ts) map-source "a map made in code"))
 
+  ;; A tile's slope (docs/physics.org, "Slopes"): its floor's heights
+  ;; (left . right) in px above the tile's bottom edge, from the properties
+  ;; slope-left and slope-right (both or neither, each 0 .. tile height),
+  ;; else from a collision polygon drawn in Tiled that has points on both
+  ;; the tile's left edge (x 0) and its right edge (x tile width): the
+  ;; highest point on each edge gives that edge's height. A polygon whose
+  ;; two heights are both the tile's full height is a plain solid tile.
+  ;; #f when the tile is no slope.
+  (define (tile-slope t props tw th where)
+    (let ((l (assoc "slope-left" props)) (r (assoc "slope-right" props)))
+      (define (height name v)
+        (unless (and (exact-integer? v) (<= 0 v th))
+          (error 'load-tilemap (sprintf "~a: property ~s is ~s; a slope height is 0 .. ~a (the tile height)"
+                                        (where) name v th)))
+        v)
+      (cond ((and l r) (cons (height "slope-left" (cdr l)) (height "slope-right" (cdr r))))
+            ((or l r)
+             (error 'load-tilemap (sprintf "~a: property ~s needs ~s beside it (a slope gives both heights)"
+                                           (where) (if l "slope-left" "slope-right")
+                                           (if l "slope-right" "slope-left"))))
+            (else (let loop ((shapes (tile-shapes t)))
+                    (and (pair? shapes)
+                         (or (polygon-slope (car shapes) tw th) (loop (cdr shapes)))))))))
+
+  ;; The heights of a collision polygon on the tile's two edges, or #f.
+  (define (polygon-slope o tw th)
+    (and (eq? (object-shape o) 'polygon)
+         (let* ((pts (map (lambda (p) (cons (+ (object-x o) (car p)) (+ (object-y o) (cdr p))))
+                          (object-points o)))
+                (top-at (lambda (x) (foldl (lambda (best p)
+                                             (if (and (= (car p) x) (or (not best) (< (cdr p) best))) (cdr p) best))
+                                           #f pts)))
+                (yl (top-at 0)) (yr (top-at tw)))
+           (and yl yr (<= 0 yl th) (<= 0 yr th)
+                (let ((l (->exact (- th yl))) (r (->exact (- th yr))))
+                  (and (not (and (= l th) (= r th))) (cons l r)))))))
+
+  (define (->exact v) (if (exact? v) v (inexact->exact v)))
+
   ;; What the tilesets' tiles say, checked: a table gid -> #(collides one-way
-  ;; kind ladder) (each #f when the tile does not set it, kind a symbol) for the
-  ;; tiles that set any, plus each gid of `extra-one-way` as one-way (of
-  ;; `extra-ladders` as a ladder); #f
-  ;; when there are none. A property of the table of another type, or a
-  ;; name that looks like one of the table's, is an error naming the file,
-  ;; the tileset, the tile and the property.
-  (define (tile-rules tilesets extra-one-way extra-kinds extra-ladders map-source)
+  ;; kind ladder slope) (each #f when the tile does not set it, kind a
+  ;; symbol, slope (left . right)) for the tiles that set any, plus each
+  ;; gid of `extra-one-way` as one-way (of `extra-ladders` as a ladder, of
+  ;; `extra-slopes` as a slope); #f when there are none. A property of the
+  ;; table of another type, or a name that looks like one of the table's,
+  ;; is an error naming the file, the tileset, the tile and the property.
+  (define (tile-rules tilesets extra-one-way extra-kinds extra-ladders extra-slopes tw th map-source)
     (let ((table (make-hash-table)) (any? #f))
+      ;; what the code's lists add to a tile's rule: field i set to v
+      (define (rule-set! g i v)
+        (let ((rule (hash-table-ref/default table g #f)))
+          (if rule
+              (vector-set! rule i v)
+              (let ((rule (make-vector 5 #f)))
+                (vector-set! rule i v)
+                (hash-table-set! table g rule)))))
       (for-each
        (lambda (ts)
          (for-each
@@ -522,46 +574,52 @@
                                           (where) (car p) (cdr known) (property-type (cdr p)) (cdr p)))))))
                props)
               (let ((collides (assoc "collides" props)) (one-way (assoc "one-way" props))
-                    (kind (assoc "kind" props)) (ladder (assoc "ladder" props)))
-                (when (or collides one-way kind ladder)
+                    (kind (assoc "kind" props)) (ladder (assoc "ladder" props))
+                    (slope (tile-slope t props tw th where)))
+                (when (or collides one-way kind ladder slope)
                   (set! any? #t)
                   (hash-table-set! table (+ (tileset-first-gid ts) (tile-id t))
                                    (vector (and collides (if (cdr collides) 'yes 'no))
                                            (and one-way (cdr one-way))
                                            (and kind (string->symbol (cdr kind)))
-                                           (and ladder (cdr ladder))))))))
+                                           (and ladder (cdr ladder))
+                                           slope))))))
           (tileset-tiles ts)))
        tilesets)
       (for-each (lambda (g)
                   (set! any? #t)
-                  (let ((old (hash-table-ref/default table g #f)))
-                    (hash-table-set! table g (vector (and old (vector-ref old 0)) #t (and old (vector-ref old 2))
-                                                     (and old (vector-ref old 3))))))
+                  (rule-set! g 1 #t))
                 extra-one-way)
       (for-each (lambda (g)
                   (unless (exact-integer? g)
                     (error 'make-tilemap "ladders: must be a list of tile ids" g))
                   (set! any? #t)
-                  (let ((old (hash-table-ref/default table g #f)))
-                    (hash-table-set! table g (vector (and old (vector-ref old 0)) (and old (vector-ref old 1))
-                                                     (and old (vector-ref old 2)) #t))))
+                  (rule-set! g 3 #t))
                 extra-ladders)
       (for-each (lambda (p)
                   (unless (and (pair? p) (exact-integer? (car p)) (symbol? (cdr p)))
                     (error 'make-tilemap "kinds: must be a list of (tile-id . symbol)" p))
                   (set! any? #t)
-                  (let ((old (hash-table-ref/default table (car p) #f)))
-                    (hash-table-set! table (car p) (vector (and old (vector-ref old 0)) (and old (vector-ref old 1))
-                                                           (cdr p) (and old (vector-ref old 3))))))
+                  (rule-set! (car p) 2 (cdr p)))
                 extra-kinds)
+      (for-each (lambda (p)
+                  (unless (and (list? p) (= (length p) 3) (exact-integer? (car p))
+                               (exact-integer? (cadr p)) (<= 0 (cadr p) th)
+                               (exact-integer? (caddr p)) (<= 0 (caddr p) th))
+                    (error 'make-tilemap
+                           (sprintf "slopes: must be a list of (tile-id left right), heights 0 .. ~a (the tile height)" th)
+                           p))
+                  (set! any? #t)
+                  (rule-set! (car p) 4 (cons (cadr p) (caddr p))))
+                extra-slopes)
       (and any? table)))
 
-;; The solid grid: 0 empty, 1 solid, 2 one-way. A non-zero gid of a
-  ;; colliding layer is solid, unless its tile says collides false or
-  ;; ladder (then it adds nothing here) or one-way (2, which a solid tile
-  ;; of another layer in the same cell overrides); on a one-way layer
-  ;; every tile is one-way, on a ladder layer every tile a ladder (see
-  ;; mark-ladder-tops!).
+  ;; The solid grid: 0 empty, 1 solid, 2 one-way, 3 slope. A non-zero gid
+  ;; of a colliding layer is solid, unless its tile says collides false or
+  ;; ladder (then it adds nothing here), is a slope (3) or one-way (2); a
+  ;; solid tile of another layer in the same cell overrides either, and a
+  ;; slope a one-way tile; on a one-way layer every other tile is one-way,
+  ;; on a ladder layer every tile a ladder (see mark-ladder-tops!).
   (define (solid-grid width height layers rules)
     (let* ((n (* width height))
            (grid (make-u8vector n 0)))
@@ -577,6 +635,8 @@
                          (let ((rule (and rules (hash-table-ref/default rules g #f))))
                            (cond ((and rule (eq? (vector-ref rule 0) 'no)))
                                  ((or climb? (and rule (vector-ref rule 3))))
+                                 ((and rule (vector-ref rule 4))
+                                  (unless (fx= 1 (u8vector-ref grid i)) (u8vector-set! grid i 3)))
                                  ((not (or all? (and rule (vector-ref rule 1))))
                                   (u8vector-set! grid i 1))
                                  ((fx= 0 (u8vector-ref grid i)) (u8vector-set! grid i 2))))))))
@@ -651,10 +711,35 @@
                 layers)
                (cons grid kinds))))))
 
+  ;; Each slope cell's heights (left . right), by cell index: the slope
+  ;; of the last colliding layer that has one there, swapped when that
+  ;; cell's tile is flipped horizontally (Tiled's other flips leave it as
+  ;; it is). #f when no cell is a slope.
+  (define (slope-grid width height layers rules grid)
+    (let ((n (* width height)))
+      (and rules
+           (let scan ((i 0))
+             (and (fx< i n) (or (fx= 3 (u8vector-ref grid i)) (scan (fx+ i 1)))))
+           (let ((v (make-vector n #f)))
+             (for-each
+              (lambda (layer)
+                (when (layer-collides? layer)
+                  (let ((data (layer-data layer)))
+                    (do ((i 0 (fx+ i 1))) ((fx= i n))
+                      (let* ((cell (u32vector-ref data i))
+                             (rule (hash-table-ref/default rules (cell-gid cell) #f))
+                             (slope (and rule (vector-ref rule 4))))
+                        (when (and slope (fx= 3 (u8vector-ref grid i)))
+                          (vector-set! v i (if (cell-flipped-horizontally? cell)
+                                               (cons (cdr slope) (car slope))
+                                               slope))))))))
+              layers)
+             v))))
+
   (define (make-tilemap width height tile-width tile-height layers
                         #!key (properties '()) (origin-col 0) (origin-row 0)
                         (info '()) (tilesets '()) (layer-tree layers) (one-way '()) (kinds '())
-                        (ladders '()))
+                        (ladders '()) (slopes '()))
     (for-each
      (lambda (layer)
        (unless (and (eq? (layer-kind layer) 'tile)
@@ -668,20 +753,23 @@
                  (fixnum? tile-height) (fx> tile-height 0))
       (error 'make-tilemap "tile size must be positive integers" tile-width tile-height))
     (let* ((source (let ((p (assq 'source info))) (and p (cdr p))))
-           (rules (tile-rules tilesets one-way kinds ladders source))
+           (rules (tile-rules tilesets one-way kinds ladders slopes tile-width tile-height source))
            (climbable (ladder-grid width height layers rules))
            (solid (solid-grid width height layers rules)))
       (mark-ladder-tops! width solid climbable)
       (%make-tilemap width height tile-width tile-height layers properties
                      solid origin-col origin-row
-                     info tilesets layer-tree (kind-grid width height layers rules source) climbable)))
+                     info tilesets layer-tree (kind-grid width height layers rules source) climbable
+                     (slope-grid width height layers rules solid))))
 
   ;; A one-layer map from rows of tile ids: procedural levels, tests, the REPL.
   ;; one-way: the tile ids that are one-way platforms; kinds: an alist
   ;; (tile-id . kind) of the tiles' kinds (as the `kind` tile property);
-  ;; ladders: the tile ids that are ladders.
+  ;; ladders: the tile ids that are ladders; slopes: a list (tile-id left
+  ;; right) of the slope tiles and their heights (as the slope-left and
+  ;; slope-right tile properties).
   (define/keywords (list->tilemap rows #!key (tile-width 16) (tile-height 16) (name "tiles")
-                                  (one-way '()) (kinds '()) (ladders '()))
+                                  (one-way '()) (kinds '()) (ladders '()) (slopes '()))
     (let* ((height (length rows))
            (width (if (null? rows) 0 (length (car rows))))
            (data (make-u32vector (* width height) 0)))
@@ -700,7 +788,7 @@
           (loop (cdr rows) (+ j 1))))
       (make-tilemap width height tile-width tile-height
                     (list (make-layer name width height data))
-                    one-way: one-way kinds: kinds ladders: ladders)))
+                    one-way: one-way kinds: kinds ladders: ladders slopes: slopes)))
 
   ;;; ------------------------------------------------------------------
   ;;; Where Tiled draws things, for every orientation (the renderer and the
@@ -859,7 +947,7 @@
     (let ((i (cell-index 'tilemap-kind tm col row)) (k (tilemap-kinds tm)))
       (and i k (vector-ref (cdr k) (u8vector-ref (car k) i)))))
 
-;; Whether the cell is a ladder (docs/physics.org, "Ladders"): O(1).
+  ;; Whether the cell is a ladder (docs/physics.org, "Ladders"): O(1).
   (define (tilemap-ladder? tm col row)
     (let ((i (cell-index 'tilemap-ladder? tm col row)) (l (tilemap-ladders tm)))
       (and i l (fx= 1 (u8vector-ref l i)))))
@@ -868,6 +956,13 @@
   (define (tilemap-ladder-top? tm col row)
     (and (tilemap-ladder? tm col row)
          (not (tilemap-ladder? tm col (- row 1)))))
+
+  ;; The slope of the cell, (left . right): its floor's heights in px above
+  ;; the cell's bottom edge at its left and right edges; #f when the cell
+  ;; is no slope (docs/physics.org, "Slopes").
+  (define (tilemap-slope tm col row)
+    (let ((i (cell-index 'tilemap-slope tm col row)) (v (tilemap-slopes tm)))
+      (and i v (fx= 3 (u8vector-ref (tilemap-solid-grid tm) i)) (vector-ref v i))))
 
   ;;; ------------------------------------------------------------------
   ;;; Properties

@@ -53,8 +53,9 @@ static int ds_tile_stop(long v, long pn, long pd, long size, long an, long ad, l
   for (line = from; ; line += forward ? 1 : -1) {
     const unsigned char *base = bytes + line * ls;
     for (cell = lo; cell <= hi; cell++)
-      if (base[cell * cs] &&
-          (base[cell * cs] == 1 || (one_way && (line + line_origin) * tile * pd >= start_bottom))) {
+      if (base[cell * cs] &&      /* most cells are empty: one test */
+          (base[cell * cs] == 1 ||
+           (one_way && base[cell * cs] == 2 && (line + line_origin) * tile * pd >= start_bottom))) {
         long at = line + line_origin;
         *stop = forward ? at * tile - size : (at + 1) * tile;
         return 1;
@@ -83,6 +84,29 @@ static int ds_box_solid(const unsigned char *bytes, long cols, long rows, long c
   for (r = r0; r <= r1; r++)
     for (c = c0; c <= c1; c++)
       if (bytes[r * cols + c] == 1) return 1;
+  return 0;
+}
+
+/* Whether a slope cell (byte 3) lies where the slope rules could look at
+   this body this frame (docs/physics.org, "Slopes"): the columns of
+   x .. x + vx widened by a tile and twice the width, the rows of y .. y + vy
+   widened by a tile and twice the height, more than any tile pass, escape
+   aside (the kernel takes no body inside solid tiles), can move it or its
+   foot's cut reach. Such a body takes the readable steps. */
+static int ds_near_slope(const unsigned char *bytes, long cols, long rows, long col0, long row0,
+                         long tw, long th, long xn, long xd, long w, long vx,
+                         long yn, long yd, long h, long vy)
+{
+  long xa = ds_floor_div(ds_min(xn, xn + vx * xd), xd) - tw - 2 * w - 1;
+  long xb = ds_floor_div(ds_max(xn, xn + vx * xd), xd) + tw + 2 * w + 1;
+  long ya = ds_floor_div(ds_min(yn, yn + vy * yd), yd) - th - 2 * h - 1;
+  long yb = ds_floor_div(ds_max(yn, yn + vy * yd), yd) + th + 2 * h + 1;
+  long c0 = ds_max(ds_floor_div(xa, tw) - col0, 0), c1 = ds_min(ds_floor_div(xb, tw) - col0, cols - 1);
+  long r0 = ds_max(ds_floor_div(ya, th) - row0, 0), r1 = ds_min(ds_floor_div(yb, th) - row0, rows - 1);
+  long r, c;
+  for (r = r0; r <= r1; r++)
+    for (c = c0; c <= c1; c++)
+      if (bytes[r * cols + c] == 3) return 1;
   return 0;
 }
 
@@ -146,6 +170,9 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
     return C_fix(-1);                  /* d * tile could overflow */
   int accelerate = grav && !(ay == 0 && (flags & DS_HAS_AY));
   long vy = grav ? (accelerate ? vy0 + ay : vy0) + g : vy0;
+  if ((flags & DS_SLOPES) &&          /* set only with a map */
+      ds_near_slope(bytes, cols, rows, col0, row0, tw, th, xn, xd, w, vx, yn, yd, h, vy))
+    return C_fix(-1);
   if (has_map && swept && (vx != 0 || vy != 0) &&
       ds_box_solid(bytes, cols, rows, col0, row0, tw, th, xn, xd, w, yn, yd, h))
     return C_fix(-1);

@@ -14,7 +14,8 @@ enum {
   DS_HAS_X = 16, DS_HAS_Y = 32, DS_HAS_VX = 64, DS_HAS_VY = 128,
   DS_HAS_AY = 256, DS_HAS_ON = 512,   /* the key is present */
   DS_NOT_HERE = 1024,   /* an unknown #:collision-mode: not for the kernel */
-  DS_DROP = 2048        /* #:drop-through?: one-way tiles do not hold it */
+  DS_DROP = 2048,       /* #:drop-through?: one-way tiles do not hold it */
+  DS_SLOPES = 4096      /* the map has slope cells: a body near one is not for the kernel */
 };
 
 /* the keys to write; their new values are out[0] .. out[5] in this order.

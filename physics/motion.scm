@@ -182,6 +182,7 @@
   (define-c-constant flag-on DS_HAS_ON 512)
   (define-c-constant flag-not-here DS_NOT_HERE 1024)
   (define-c-constant flag-drop DS_DROP 2048)
+  (define-c-constant flag-slopes DS_SLOPES 4096)
   (define-c-constant write-x DS_WRITE_X 1)
   (define-c-constant write-y DS_WRITE_Y 2)
   (define-c-constant write-vx DS_WRITE_VX 4)
@@ -211,7 +212,10 @@
   (define no-map (vector 0 0 0 0 1 1))
 
   ;; What every entity of a frame shares (the map's solid grid, size and
-  ;; origin, the tile size, the scene's collision mode) is read once. Each
+  ;; origin, the tile size, whether it has slopes, the scene's collision
+  ;; mode) is read once. On a map with slope cells the kernel leaves a body
+  ;; that could come near one this frame to the readable steps
+  ;; (docs/physics.org, "Slopes"); a map without them never asks. Each
   ;; entity whose numbers the kernel takes (above), with no
   ;; #:skip-pipelines, then goes through fixnum-motion!; any other one
   ;; (flonums, other rationals, bignums, a NaN, skips, an unknown mode)
@@ -234,7 +238,7 @@
            (map (or map-data no-map))
            (one-way? (and map? (one-way-map? tm)))
            ;; the bits of fixnum-motion!'s flags the scene decides
-           (scene-flags (fxior (if map? flag-map 0)
+           (scene-flags (fxior (fxior (if map? flag-map 0) (if (and map? (tilemap-slopes tm)) flag-slopes 0))
                                (fxior (if (and map? (swept-mode? scene '() #f)) flag-swept 0)
                                       (if ground? flag-ground 0))))
            ;; an entity's own mode replaces the scene's

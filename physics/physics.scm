@@ -15,14 +15,15 @@
 ;;; tile-collisions) the tile steps, (downstroke contacts) ground and
 ;;; bodies against bodies, (downstroke motion) the motion steps and the
 ;;; motion pass, (downstroke groups) groups, (downstroke touch) contacts
-;;; per side, (downstroke ladders) climbing ladders.
+;;; per side, (downstroke ladders) climbing ladders, (downstroke slopes)
+;;; slope tiles and the body's foot.
 
 (module (downstroke physics) ()
   ;; imported too, not only re-exported, so that loading this module loads
   ;; the code of all of them
   (import (chicken module) (downstroke tuning) (downstroke tile-grid) (downstroke escape)
           (downstroke tile-collisions) (downstroke contacts) (downstroke motion)
-          (downstroke groups) (downstroke touch) (downstroke ladders))
+          (downstroke groups) (downstroke touch) (downstroke ladders) (downstroke slopes))
   ;; without the names after ";; for sibling modules only" in tile-grid.scm's,
   ;; escape.scm's and tile-collisions.scm's export lists (tests/layout-test.scm checks
   ;; that games do not see them)
@@ -34,4 +35,4 @@
             (except (downstroke tile-collisions)
                     swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing?)
             (downstroke contacts) (downstroke motion) (downstroke groups) (downstroke touch)
-            (downstroke ladders)))
+            (downstroke ladders) (only (downstroke slopes) slope-surface)))

@@ -13,7 +13,7 @@
 
   (import scheme (chicken base) (chicken format) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke map)
-          (downstroke body) (downstroke tile-grid) (downstroke escape))
+          (downstroke body) (downstroke tile-grid) (downstroke escape) (downstroke slopes))
 
   (foreign-declare "#include \"physics/body.h\"")
 
@@ -63,7 +63,11 @@
   ;; covers only the motion made this frame). one-way?: one-way tiles
   ;; whose top the body's bottom was at or above at that start count too
   ;; (the y pass of a falling body).
-  (define (tile-stop v pos size across across-size swept start one-way? tile tile-across grid)
+  ;; push-size: the size the stop position is computed with (size, but a
+  ;; body near a slope tests a box shorter than itself, docs/physics.org
+  ;; "Slopes").
+  (define (tile-stop v pos size across across-size swept start one-way? tile tile-across grid
+                     #!optional (push-size size))
     ;; swept: from the line of cells the leading edge was in at the start,
     ;; the cell holding it on the side it moves to: moving right (down),
     ;; the cell of start + size, floor((start + size) / T); moving left
@@ -85,7 +89,7 @@
                       (nearest-solid-line grid
                                           (if swept (max (- (cell-ceiling start tile) 1) l1) l1)
                                           l0 -1 c0 c1))))
-        (and line (tile-push-pos v line tile size)))))
+        (and line (tile-push-pos v line tile push-size)))))
 
   ;; Whether a body is on a ladder (docs/physics.org, "Ladders"): a
   ;; #:climber? whose #:climbing? the climbing step set. Gravity leaves it
@@ -97,23 +101,36 @@
   ;; Both tile passes: pos-key is the axis resolved, across-key the other,
   ;; `start` where this axis's motion started. A velocity of 0 snaps
   ;; nothing. A body with #:drop-through?, or climbing, falls through
-  ;; one-way tiles.
-  ;; climbers?: whether the body may be climbing (the motion pass asks
-  ;; only in a scene with a climber).
+  ;; one-way tiles (passes-one-way?). The box tested is the body's,
+  ;; except near a slope (cut: how much the y extent is shortened at the
+  ;; bottom, 0 elsewhere). climbers?: whether the body may be climbing
+  ;; (the motion pass asks only in a scene with a climber).
   (define (resolve-tiles entity swept start pos-key size-key vel-key across-key across-size-key
-                         tile tile-across grid #!optional (climbers? #t))
+                         tile tile-across grid #!optional (cut 0) (climbers? #t))
     (let ((v (num entity vel-key)))
       (if (zero? v)
           entity
-          (let ((stop (tile-stop v (num entity pos-key) (num entity size-key)
-                                 (num entity across-key) (num entity across-size-key)
-                                 swept start
-                                 (and (eq? pos-key #:y) (> v 0) (not (entity-ref entity #:drop-through? #f))
-                                      (not (and climbers? (climbing? entity))))
-                                 tile tile-across grid)))
+          (let ((stop (tile-box-stop entity v swept start pos-key size-key across-key across-size-key
+                                     tile tile-across grid cut climbers?)))
             (if stop
                 (entity-set* entity pos-key stop vel-key (rebound entity v))
                 entity)))))
+
+  ;; Where the (cut) box stops on that axis, or #f.
+  (define (passes-one-way? entity climbers?)
+    (or (entity-ref entity #:drop-through? #f)
+        (and climbers? (climbing? entity))))
+
+  (define (tile-box-stop entity v swept start pos-key size-key across-key across-size-key
+                         tile tile-across grid cut climbers?)
+    (let ((size (num entity size-key)) (across-size (num entity across-size-key)))
+      (if (eq? pos-key #:y)
+          (tile-stop v (num entity pos-key) (- size cut) (num entity across-key) across-size
+                     swept start
+                     (and (> v 0) (not (passes-one-way? entity climbers?)))
+                     tile tile-across grid size)
+          (tile-stop v (num entity pos-key) size (num entity across-key) (- across-size cut)
+                     swept start #f tile tile-across grid))))
 
   ;; The velocity a body leaves a tile with on the axis it hit it: 0, or
   ;; with #:bounce b, -v * b (docs/physics.org, "Body controls"). A body
@@ -140,13 +157,13 @@
   ;; as it was; the answer is the entity and the new start on `axis`
   ;; (#:x or #:y), which that axis's sweep starts from, as it is, not
   ;; recomputed from the new position (flonums would round it).
-  (define (leave-solids entity tm sx sy mx my axis)
+  (define (leave-solids entity tm sx sy mx my axis #!optional (cut 0))
     (if (or (and (zero? (num entity #:vx)) (zero? (num entity #:vy)))
             (entity-ref entity #:tween #f)
             (and (entity-skips-pipeline? entity 'velocity-x)
                  (entity-skips-pipeline? entity 'velocity-y)))
         (values entity (if (eq? axis #:x) sx sy))
-        (let-values (((nx ny) (escape-place tm sx sy (num entity #:width) (num entity #:height))))
+        (let-values (((nx ny) (escape-place tm sx sy (num entity #:width) (- (num entity #:height) cut))))
           (values (if (and (eqv? nx sx) (eqv? ny sy))
                       entity
                       (entity-set* entity
@@ -159,18 +176,39 @@
   (define (velocity-moved entity vel-key velocity-step)
     (if (entity-skips-pipeline? entity velocity-step) 0 (num entity vel-key)))
 
+  ;; Near a slope (docs/physics.org, "Slopes"): how much of the box's
+  ;; bottom the tile passes leave out, when a slope cell lies in the
+  ;; columns the foot crossed on x this frame (x - mx + w/2 to x + w/2),
+  ;; in the rows within that much of the foot's path on y (y + h - my to
+  ;; y + h); 0 elsewhere and on maps without slopes. It is slope-cut's
+  ;; w/2 + |mx| + max(my, 0) (at most the height): a lower corner sinks
+  ;; up to w/2 below the foot on a 45 degree floor, and the foot itself
+  ;; is up to |mx| below the floor that rose under it this frame and my
+  ;; below where it started on y.
+  (define (slope-cut-of tm entity mx my)
+    (if (slope-map? tm)
+        (let* ((x (num entity #:x)) (w (num entity #:width)) (h (num entity #:height))
+               (b (+ (num entity #:y) h))
+               (d (slope-cut w mx my h))
+               (fx (+ x (/ w 2))))
+          (if (foot-near-slope? tm (- fx mx) fx (- (min b (- b my)) d) (+ (max b (- b my)) d))
+              d
+              0))
+        0))
+
   ;; The x pass: a swept body first leaves solid tiles, from where its
   ;; frame started, (x - vx, y).
   (define (stop-at-tiles-x scene entity)
     (let* ((tm (scene-tilemap scene))
            (swept (swept? scene entity))
            (mx (velocity-moved entity #:vx 'velocity-x))
-           (sx (- (num entity #:x) mx)))
+           (sx (- (num entity #:x) mx))
+           (cut (slope-cut-of tm entity mx 0)))
       (let-values (((entity sx) (if swept
-                                    (leave-solids entity tm sx (num entity #:y) mx 0 #:x)
+                                    (leave-solids entity tm sx (num entity #:y) mx 0 #:x cut)
                                     (values entity sx))))
         (resolve-tiles entity swept sx #:x #:width #:vx #:y #:height
-                       (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm)))))
+                       (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm) cut #f))))
 
   ;; The y pass. A swept body that skips the x tile pass leaves solid
   ;; tiles here, from where its frame started on both axes, (x - vx,
@@ -179,14 +217,46 @@
     (let* ((tm (scene-tilemap scene))
            (swept (swept? scene entity))
            (my (velocity-moved entity #:vy 'velocity-y))
-           (sy (- (num entity #:y) my)))
+           (sy (- (num entity #:y) my))
+           (mx (velocity-moved entity #:vx 'velocity-x))
+           (cut (slope-cut-of tm entity mx my)))
       (let-values (((entity sy)
                     (if (and swept (entity-skips-pipeline? entity 'tile-collisions-x))
-                        (let ((mx (velocity-moved entity #:vx 'velocity-x)))
-                          (leave-solids entity tm (- (num entity #:x) mx) sy mx my #:y))
+                        (leave-solids entity tm (- (num entity #:x) mx) sy mx my #:y cut)
                         (values entity sy))))
-        (resolve-tiles entity swept sy #:y #:height #:vy #:x #:width
-                       (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm) climbers?))))
+        (if (eqv? cut 0)
+            (resolve-tiles entity swept sy #:y #:height #:vy #:x #:width
+                           (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm) 0 climbers?)
+            (land-near-slope entity tm swept sy mx cut climbers?)))))
+
+  ;; The y pass near a slope (docs/physics.org, "Slopes"). The box without
+  ;; its lowest `cut` px (slope-cut-of) meets solid and one-way tiles as any box does (a
+  ;; stop going down puts the whole box on the tile); a body going down
+  ;; (vy > 0) also has its foot, x + w/2, swept from where the frame's
+  ;; motion left it on y, y + h - my, raised by |mx| (the most a floor of
+  ;; at most 45 degrees rises under a foot that moved mx on x), down to
+  ;; y + h, and by |mx| more for a body that was on the ground (so that
+  ;; it follows a floor going down): the first floor in that span stops
+  ;; it there. Of the two stops, the higher one holds.
+  (define (land-near-slope entity tm swept sy mx cut climbers?)
+    (let* ((v (num entity #:vy))
+           (h (num entity #:height))
+           (box (and (not (zero? v))
+                     (tile-box-stop entity v swept sy #:y #:height #:x #:width
+                                    (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm)
+                                    cut climbers?)))
+           (foot (and (> v 0)
+                      (let* ((b (+ (num entity #:y) h))
+                             (from (+ sy h))
+                             (level (foot-ground tm (+ (num entity #:x) (/ (num entity #:width) 2))
+                                                 (- from (abs mx))
+                                                 (if (entity-ref entity #:on-ground? #f) (+ b (abs mx)) b)
+                                                 from (passes-one-way? entity climbers?))))
+                        (and level (- level h)))))
+           (stop (cond ((and box foot) (min box foot)) (else (or box foot)))))
+      (if stop
+          (entity-set* entity #:y stop #:vy (rebound entity v))
+          entity)))
 
   (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
     guard: (scene-tilemap scene)
@@ -202,6 +272,10 @@
   ;; A one-way tile there counts when the body's bottom is at or above its
   ;; top and the body is not dropping through.
   (define (tile-ground? tm x y w h drop?)
+    (or (box-ground? tm x y w h drop?)
+        (and (slope-map? tm) (foot-on-slope? tm x y w h))))
+
+  (define (box-ground? tm x y w h drop?)
     (let* ((th (tilemap-tile-height tm))
            (row (cell-of (+ y h 1) th))
            (c0 (span-first x (tilemap-tile-width tm)))

@@ -13,6 +13,6 @@
   ;; objects.scm's export lists (tests/layout-test.scm checks the two agree)
   (reexport (except (downstroke map)
                     %make-layer make-image make-tile make-tileset make-map-object
-                    tileset-tile-table tileset-tile-ids gid-mask check-integer)
+                    tileset-tile-table tileset-tile-ids gid-mask check-integer tilemap-slopes)
             (downstroke tmx)
             (except (downstroke objects) object-layer-selector)))

@@ -20,6 +20,9 @@
 ;;;          15 16 17 torch flame (three flickers)
 ;;; ladder.png, one 16 x 16 tile: a wooden ladder (ladders.tsx, the
 ;;;   platformer's third tileset, gives it the tile property ladder).
+;;; slopes.png, 3 slope tiles of 16 x 16 (slopes.tsx, the platformer's fourth
+;;; tileset): 0 rises 0 -> 16 px (45 degrees), 1 rises 0 -> 8, 2 rises
+;;; 8 -> 16 (a 22.5 degree pair); the level flips them for the way down.
 ;;; shmup.png, 4 tiles of 16 x 16 for the shmup (ship, enemy, bullet, spark).
 ;;; font.png, a sprite font: printable ASCII (32..126) in 6 x 8 cells, 16 to
 ;;; a row; white 5 x 7 glyphs with a dark shadow one pixel down and right.
@@ -108,6 +111,21 @@
   (tile-rect! r c '(150 154 166) 0 0 2 T)
   (tile-rect! r c '(76 78 90) 0 14 T 2)
   (tile-rect! r c '(76 78 90) 14 0 2 T))
+
+;; A slope tile: grass-topped dirt up to the line from `left` px high at
+;; the left edge to `right` px at the right, one pixel column at a time
+;; (the height at the column's middle, rounded).
+(define (draw-slope! r c left right)
+  (do ((x 0 (+ x 1))) ((= x T))
+    (let ((h (inexact->exact (round (+ left (/ (* (- right left) (+ x 1/2)) T))))))
+      (when (> h 0)
+        (tile-rect! r c dirt x (- T h) 1 h)
+        (tile-rect! r c grass x (- T h) 1 (min h 3))))))
+
+(define (draw-slopes! r)
+  (draw-slope! r 0 0 16)
+  (draw-slope! r 1 0 8)
+  (draw-slope! r 2 8 16))
 
 (define (draw-tiles! r)
   (for-each (lambda (draw c) (draw r c))
@@ -393,7 +411,7 @@
 ;;; ------------------------------------------------------------------
 
 (define asset-names
-  '("tiles.png" "sprites.png" "ladder.png" "shmup.png" "font.png" "jump.wav" "coin.wav" "boom.wav" "music.wav"))
+  '("tiles.png" "slopes.png" "sprites.png" "ladder.png" "shmup.png" "font.png" "jump.wav" "coin.wav" "boom.wav" "music.wav"))
 
 ;; Every asset is there and newer than this generator: nothing to do.
 (define (assets-fresh?)
@@ -409,6 +427,7 @@
   (create-directory out-dir #t)
   (init! '(video))
   (make-png! (string-append out-dir "/tiles.png") (* 8 T) T draw-tiles!)
+  (make-png! (string-append out-dir "/slopes.png") (* 3 T) T draw-slopes!)
   (make-png! (string-append out-dir "/sprites.png") (* 6 T) (* 3 T) draw-sprites!)
   (make-png! (string-append out-dir "/ladder.png") T T draw-ladder!)
   (make-png! (string-append out-dir "/shmup.png") (* 4 T) T draw-shmup!)

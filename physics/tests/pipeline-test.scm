@@ -32,18 +32,24 @@
       ((2) (/ n (pl-pick 2 3 4 10)))
       (else (+ n (/ (pl-rand 1000) 1000.0))))))
 
+;; Half the maps have slope tiles (3 to 6: 45 and 22.5 degrees, both
+;; ways; docs/physics.org, "Slopes"), which the fast path hands to the
+;; readable steps.
 (define (pl-map)
-  (list->tilemap
-   (let rows ((j 0))
-     (if (= j 12)
-         '()
-         (cons (let cols ((i 0))
-                 (if (= i 12)
-                     '()
-                     (cons (cond ((or (= j 11) (pl-chance 15)) 1) ((pl-chance 10) 2) ((pl-chance 12) 3) (else 0))
-                           (cols (+ i 1)))))
-               (rows (+ j 1)))))
-   one-way: '(2) ladders: '(3)))
+  (let ((slopes? (pl-chance 50)))
+    (list->tilemap
+     (let rows ((j 0))
+       (if (= j 12)
+           '()
+           (cons (let cols ((i 0))
+                   (if (= i 12)
+                       '()
+                       (cons (cond ((or (= j 11) (pl-chance 15)) 1) ((pl-chance 10) 2) ((pl-chance 12) 7)
+                                   ((and slopes? (pl-chance 12)) (pl-pick 3 4 5 6))
+                                   (else 0))
+                             (cols (+ i 1)))))
+                 (rows (+ j 1)))))
+     one-way: '(2) ladders: '(7) slopes: '((3 0 16) (4 16 0) (5 0 8) (6 8 16)))))
 
 ;; A random entity: every key appears only sometimes, in a random order.
 (define (pl-entity k)
@@ -160,15 +166,22 @@
 ;; several tile sizes, with their origin anywhere, and bodies anywhere
 ;; (far outside the map too, and around the path's +-2^40 limit, where
 ;; they go back to generic arithmetic).
+;; Half of them have slope tiles (3 to 6), which the kernel leaves to the
+;; readable steps for a body near one (physics/motion.c, ds_near_slope).
 (define (pl-origin-map)
   (let* ((w (+ 1 (pl-rand 14))) (h (+ 1 (pl-rand 14)))
          (density (pl-pick 5 30 60 80))
+         (slopes? (pl-chance 50))
          (data (make-u32vector (* w h) 0)))
     (do ((i 0 (+ i 1))) ((= i (* w h)))
-      (when (pl-chance density) (u32vector-set! data i (pl-pick 1 1 1 2 3))))
-    (make-tilemap w h (pl-pick 16 8 10 16 1) (pl-pick 16 8 12 16 1)
-                  (list (make-layer "solid" w h data)) one-way: '(2) ladders: '(3)
-                  origin-col: (- (pl-rand 12) 6) origin-row: (- (pl-rand 12) 6))))
+      (when (pl-chance density)
+        (u32vector-set! data i (if (and slopes? (pl-chance 30)) (pl-pick 3 4 5 6) (pl-pick 1 1 1 2 7)))))
+    (let ((th (pl-pick 16 8 12 16 1)))
+      (make-tilemap w h (pl-pick 16 8 10 16 1) th
+                    (list (make-layer "solid" w h data)) one-way: '(2) ladders: '(7)
+                    slopes: (list (list 3 0 th) (list 4 th 0) (list 5 0 (quotient th 2))
+                                  (list 6 (quotient th 2) th))
+                    origin-col: (- (pl-rand 12) 6) origin-row: (- (pl-rand 12) 6)))))
 
 (define (pl-fixnum range)
   (case (pl-rand 24)

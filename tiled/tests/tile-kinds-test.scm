@@ -68,7 +68,8 @@
     (test "a kind read on a map without kinds is #f" #f
           (tilemap-kind (list->tilemap '((1 1))) 0 0)))
   (test "the table names every property Downstroke reads, with its type"
-        '(("collides" . bool) ("one-way" . bool) ("kind" . string) ("ladder" . bool))
+        '(("collides" . bool) ("one-way" . bool) ("kind" . string) ("ladder" . bool)
+          ("slope-left" . int) ("slope-right" . int))
         tile-property-table))
 
 (test-group "tile properties: ladder, on the tile or its layer"
@@ -114,5 +115,60 @@
   (test "a property of the game's own, not like any of the table's, loads" 'lava
         (begin (tk-tmx tk-path (tk-tile 0 '("damage" "int" "3") '("kind" "string" "lava")))
                (tilemap-kind (load-tilemap tk-path) 0 0))))
+
+;; docs/physics.org, "Slopes": a slope's heights from two int
+;; properties, or from the collision polygon drawn on the tile in Tiled.
+(define (tk-polygon-tile id x y points)
+  (sprintf "  <tile id=\"~a\"><objectgroup draworder=\"index\" id=\"2\"><object id=\"1\" x=\"~a\" y=\"~a\"><polygon points=\"~a\"/></object></objectgroup></tile>"
+           id x y points))
+
+(test-group "slope tiles: properties and collision polygons"
+  (tk-tmx tk-path (string-append (tk-tile 0 '("slope-left" "int" "0") '("slope-right" "int" "16"))
+                                 (tk-tile 1 '("slope-left" "int" "8") '("slope-right" "int" "0"))
+                                 ;; a triangle rising to the right: (0,16) (16,0) (16,16)
+                                 (tk-polygon-tile 2 0 0 "0,16 16,0 16,16")
+                                 ;; a 22.5 degree half, drawn with its object moved: its
+                                 ;; points are relative to (0, 8)
+                                 (tk-polygon-tile 3 0 8 "0,8 16,0 16,8 0,8"))
+          "0,0,0,0,0,0,0,0")
+  (let ((tm (load-tilemap tk-path)))
+    (test "properties: (left . right) heights" '((0 . 16) (8 . 0))
+          (list (tilemap-slope tm 0 0) (tilemap-slope tm 1 0)))
+    (test "a collision polygon: the highest point on each edge" '((0 . 16) (0 . 8))
+          (list (tilemap-slope tm 2 0) (tilemap-slope tm 3 0)))
+    (test "a slope cell is neither solid nor one-way" '(#f #f)
+          (list (tilemap-solid? tm 0 0) (tilemap-one-way? tm 0 0)))
+    (test "no slope on empty cells, outside the map, or on a map without slopes" '(#f #f #f)
+          (list (tilemap-slope tm 0 1) (tilemap-slope tm 9 0) (tilemap-slope (list->tilemap '((1))) 0 0))))
+  (tk-tmx tk-path (tk-polygon-tile 0 0 0 "0,0 16,0 16,16 0,16"))
+  (test "a polygon covering the whole tile is a plain solid tile" '(#f #t)
+        (let ((tm (load-tilemap tk-path))) (list (tilemap-slope tm 0 0) (tilemap-solid? tm 0 0))))
+  (test "list->tilemap's slopes:, and a cell flipped horizontally swaps the heights"
+        '((0 . 8) (8 . 0) #t)
+        (let ((tm (list->tilemap (list (list 5 (+ 5 #x80000000) 1)) slopes: '((5 0 8)))))
+          (list (tilemap-slope tm 0 0) (tilemap-slope tm 1 0) (tilemap-solid? tm 2 0))))
+  (test "a solid tile of another layer in the same cell wins over a slope" '(#f #t)
+        (begin (tk-tmx tk-path (tk-tile 0 '("slope-left" "int" "0") '("slope-right" "int" "16"))
+                       "2,0,0,0,0,0,0,0")
+               (let ((tm (load-tilemap tk-path))) (list (tilemap-slope tm 0 0) (tilemap-solid? tm 0 0))))))
+
+(test-group "slope tiles: mistakes are named at load"
+  (define (names? tiles . words)
+    (tk-tmx tk-path tiles)
+    (let ((msg (tk-load-error tk-path)))
+      (and msg (let loop ((ws (cons tk-path words)))
+                 (or (null? ws) (and (substring-index (car ws) msg) (loop (cdr ws))))))))
+  (test-assert "\"slope_left\": the name it resembles"
+               (names? (tk-tile 1 '("slope_left" "int" "0") '("slope-right" "int" "16")) "tile 1" "\"slope-left\""))
+  (test-assert "\"slope-rigth\" (two letters swapped)"
+               (names? (tk-tile 1 '("slope-left" "int" "0") '("slope-rigth" "int" "16")) "\"slope-right\""))
+  (test-assert "a height as a float: the expected type"
+               (names? (tk-tile 1 '("slope-left" "float" "0.5") '("slope-right" "int" "16")) "\"slope-left\"" "int" "float"))
+  (test-assert "one height without the other"
+               (names? (tk-tile 2 '("slope-left" "int" "4")) "tile 2" "\"slope-left\"" "\"slope-right\""))
+  (test-assert "a height beyond the tile"
+               (names? (tk-tile 0 '("slope-left" "int" "0") '("slope-right" "int" "17")) "\"slope-right\"" "17" "16"))
+  (test-error "list->tilemap: a slope with a height beyond the tile"
+              (list->tilemap '((5)) slopes: '((5 0 20)))))
 
 (delete-file* tk-path)
