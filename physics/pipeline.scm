@@ -173,6 +173,7 @@
   ;; ground detection looks only at the entity itself and the map, so it
   ;; joins the motion pass.
   (define (engine-pipeline scene dt)
+    (keep-heap-headroom!)
     (let* ((before (pipeline-needs (scene-entities scene)))
            (tweens? (needs? before need-tweens))
            (ground-in-motion? (ground-joins-motion? before))
@@ -203,6 +204,30 @@
                           (cut scene-map-entities <> (lambda (s e) (apply-animation s e dt))) _)
              (when-needed need-particles
                           (cut scene-map-entities <> (lambda (s e) (step-particles s e dt))) _))))
+
+  ;;; The heap's headroom
+  ;; After a major collection CHICKEN grows its heap only when less than a
+  ;; fixed amount (4 MB by default, -:hf) would stay free in it. A scene
+  ;; whose live entities outgrow that amount then collects ever more often,
+  ;; each major collection copying all of them: the collector's work per
+  ;; body grew with the crowd (docs/performance.org, "Cost per body as a
+  ;; scene grows"). Each frame the engine asks for at least half of a heap
+  ;; half to stay free (never less than the program started with), so the
+  ;; heap grows with the live data, and a major collection, which copies
+  ;; the live data once, comes only after as many bytes were promoted: its
+  ;; share of a frame is the same per body at any size.
+  (foreign-declare "
+extern C_TLS C_uword C_heap_half_min_free;
+static C_uword ds_min_free_at_start;
+static int ds_min_free_read = 0;
+static void ds_keep_headroom(C_word heap_size) {
+  C_uword quarter = (C_uword)C_unfix(heap_size) / 4;
+  if (!ds_min_free_read) { ds_min_free_at_start = C_heap_half_min_free; ds_min_free_read = 1; }
+  C_heap_half_min_free = quarter > ds_min_free_at_start ? quarter : ds_min_free_at_start;
+}")
+  (define (keep-heap-headroom!)
+    ((foreign-lambda void "ds_keep_headroom" scheme-object)
+     (vector-ref (##sys#memory-info) 0)))
 
   ;; Tile ground detection may join the motion pass (one walk instead of
   ;; two) only when it reads nothing but the entity itself and the map:
