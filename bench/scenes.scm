@@ -234,12 +234,15 @@ static void bench_count_gc(int mode, C_long ms) {
        steps))))
 
 ;;; S2: solid crowd.
-(define (s2-scene n)
+;; flonum?: positions as flonums (the mode 'flonum of S2, the spatial hash
+;; on the same movers at the same places).
+(define (s2-scene n flonum?)
   (reseed!)
   (let loop ((k 0) (movers '()))
     (if (= k n)
         (make-sprite-scene entities: (reverse movers))
         (let* ((x (modulo (rand) 2040)) (y (modulo (rand) 2040))
+               (x (if flonum? (exact->inexact x) x)) (y (if flonum? (exact->inexact y) y))
                (vx (- (modulo (rand) 5) 2)) (vy (- (modulo (rand) 5) 2)))
           (loop (+ k 1)
                 (cons (list (cons #:x x) (cons #:y y) (cons #:width 8) (cons #:height 8)
@@ -254,8 +257,8 @@ static void bench_count_gc(int mode, C_long ms) {
 
 (define (clamp-axis e pos vel)
   (let ((p (entity-ref e pos)))
-    (cond ((< p 0) (entity-set (entity-set e pos 0) vel (- (entity-ref e vel))))
-          ((> p 2040) (entity-set (entity-set e pos 2040) vel (- (entity-ref e vel))))
+    (cond ((< p 0) (entity-set (entity-set e pos (if (flonum? p) 0.0 0)) vel (- (entity-ref e vel))))
+          ((> p 2040) (entity-set (entity-set e pos (if (flonum? p) 2040.0 2040)) vel (- (entity-ref e vel))))
           (else e))))
 
 (define (s2-logic scene)
@@ -266,7 +269,7 @@ static void bench_count_gc(int mode, C_long ms) {
          (let repeat ((r 0) (times '()))
            (if (= r runs)
                times
-               (let frames ((f 0) (scene (s2-scene n)) (start #f))
+               (let frames ((f 0) (scene (s2-scene n (eq? method 'flonum))) (start #f))
                  (cond ((= f (+ (warm-up 60) (timed 600)))
                         (when (= r 0)
                           (let ((es (scene-entities scene)))
@@ -276,7 +279,8 @@ static void bench_count_gc(int mode, C_long ms) {
                         (repeat (+ r 1) (cons (- (now) start) times)))
                        (else
                         (let ((start (if (= f (warm-up 60)) (start-timing!) start)))
-                          (frames (+ f 1) (s2-logic (s2-step scene method)) start)))))))))
+                          (frames (+ f 1) (s2-logic (s2-step scene (if (eq? method 'flonum) 'spatial-hash method)))
+                                  start)))))))))
     (let ((ms (/ (median times) (exact->inexact (timed 600)))))
       (report! "S2" method n #f (timed 600) ms (/ (* 1000 ms) n) #f #f))))
 
@@ -440,8 +444,8 @@ static void bench_count_gc(int mode, C_long ms) {
     (error 'bench (sprintf "no directory ~s for the CSV file ~s (run from the repository root, or give --csv FILE)"
                            dir csv-file))))
 (define quick? (member "--quick" args))
-;; --mode M keeps only that mode: discrete or swept (S1, S3), all-pairs or
-;; spatial-hash (S2).
+;; --mode M keeps only that mode: discrete or swept (S1, S3), all-pairs,
+;; spatial-hash or flonum (S2: the spatial hash with flonum positions).
 (define only-mode (let ((m (flag-value "--mode" #f))) (and m (string->symbol m))))
 ;; --n N keeps only that size of S1 and S2 (and the step table's size).
 (define only-n (let ((n (flag-value "--n" #f))) (and n (string->number n))))
@@ -475,7 +479,9 @@ static void bench_count_gc(int mode, C_long ms) {
   (when (memq 'all-pairs (modes '(all-pairs)))
     (for-each (lambda (n) (run-s2 n 'all-pairs runs)) (sizes (if quick? '(100) '(100 1000)))))
   (when (memq 'spatial-hash (modes '(spatial-hash)))
-    (for-each (lambda (n) (run-s2 n 'spatial-hash runs)) (sizes (if quick? '(100) '(100 1000 5000))))))
+    (for-each (lambda (n) (run-s2 n 'spatial-hash runs)) (sizes (if quick? '(100) '(100 1000 5000)))))
+  (when (memq 'flonum (modes '(flonum)))
+    (for-each (lambda (n) (run-s2 n 'flonum runs)) (sizes (if quick? '(100) '(100 1000 5000))))))
 (when (wanted? "S3")
   (for-each (lambda (mode)
               (for-each (lambda (v) (run-s3 v mode runs))
