@@ -117,85 +117,21 @@ static int ds_position(C_word o, long *n, long *d) {
   return 0;
 }
 
-/* A coordinate of the flonum path below: a flonum, or a small fixnum. */
-static int ds_real(C_word o, double *v, int *flonum) {
-  if (DS_SMALL(o)) { *v = (double)C_unfix(o); *flonum = 0; return 1; }
-  if (!C_immediatep(o) && C_block_header(o) == C_FLONUM_TAG) {
-    *v = C_flonum_magnitude(o);
-    *flonum = 1;
-    return 1;
-  }
-  return 0;
-}
-
-/* ds_fixnum_motion for a body in a scene without a map whose position is
-   a flonum on one axis or both (the other a small fixnum), its velocities
-   small fixnums: the motion steps' sums, a flonum plus a fixnum being the
-   fixnum's double added, as Scheme's + does. A flonum coordinate is
-   always written (the steps' entity-set finds no new flonum eq? to the
-   old one); a sum that is not finite is the steps' error to raise. */
-static C_word ds_flonum_motion(C_word out, double *fout, long flags, C_word gravity_,
-                               C_word x_, C_word y_, C_word w_, C_word h_,
-                               C_word vx_, C_word vy_, C_word ay_, C_word on)
-{
-  double x, y;
-  int xf, yf, writes = 0, grav = flags & DS_GRAVITY;
-  if (!(ds_real(x_, &x, &xf) && ds_real(y_, &y, &yf) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
-        DS_SIZE(w_) && DS_SIZE(h_) && (!grav || (DS_SMALL(ay_) && DS_SMALL(gravity_)))))
-    return C_fix(-1);
-  long vx = C_unfix(vx_), vy0 = C_unfix(vy_), ay = grav ? C_unfix(ay_) : 0;
-  int accelerate = grav && !(ay == 0 && (flags & DS_HAS_AY));
-  long vy = grav ? (accelerate ? vy0 + ay : vy0) + C_unfix(gravity_) : vy0;
-  if (xf) {
-    double x2 = x + (double)vx;
-    if (!isfinite(x2)) return C_fix(-1);
-    fout[0] = x2;
-    writes |= DS_WRITE_X | DS_X_FLONUM;
-  } else if (!((flags & DS_HAS_X) && vx == 0)) {
-    C_set_block_item(out, 0, C_fix(C_unfix(x_) + vx));
-    writes |= DS_WRITE_X;
-  }
-  if (yf) {
-    double y2 = y + (double)vy;
-    if (!isfinite(y2)) return C_fix(-1);
-    fout[1] = y2;
-    writes |= DS_WRITE_Y | DS_Y_FLONUM;
-  } else if (!((flags & DS_HAS_Y) && vy == 0)) {
-    C_set_block_item(out, 1, C_fix(C_unfix(y_) + vy));
-    writes |= DS_WRITE_Y;
-  }
-  if (grav && !((flags & DS_HAS_VY) && vy0 == vy)) { C_set_block_item(out, 3, C_fix(vy)); writes |= DS_WRITE_VY; }
-  if (accelerate && !((flags & DS_HAS_AY) && ay == 0)) {
-    C_set_block_item(out, 4, C_fix(0));
-    writes |= DS_WRITE_AY;
-  }
-  /* no map and (as the engine passes DS_GROUND) no solid body: no ground */
-  if ((flags & DS_GROUND) && grav && !((flags & DS_HAS_ON) && on == C_SCHEME_FALSE)) {
-    C_set_block_item(out, 5, C_SCHEME_FALSE);
-    writes |= DS_WRITE_ON;
-  }
-  return C_fix(writes);
-}
-
 /* -1 when this entity is not for this code (a number the kernel does not
    take, a non-empty #:skip-pipelines, an unknown mode: DS_NOT_HERE), else
    the keys to write. Velocities are fixnums, so a rational position keeps
    its denominator (n/d + v = (n + v d)/d, still in lowest terms) until a
-   tile stops it on a whole pixel. Without a map, flonum positions are
-   ds_flonum_motion's. */
-static C_word ds_fixnum_motion(C_word out, double *fout, const unsigned char *bytes, C_word map,
+   tile stops it on a whole pixel. */
+static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word map,
                                C_word flags_, C_word gravity_, C_word skips,
                                C_word x_, C_word y_, C_word w_, C_word h_,
                                C_word vx_, C_word vy_, C_word ay_, C_word on)
 {
   long flags = C_unfix(flags_), g;
   long xn, xd, yn, yd;
-  if ((flags & DS_NOT_HERE) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST))
-    return C_fix(-1);
-  if (!(flags & DS_HAS_MAP) && !(ds_position(x_, &xn, &xd) && ds_position(y_, &yn, &yd)))
-    return ds_flonum_motion(out, fout, flags, gravity_, x_, y_, w_, h_, vx_, vy_, ay_, on);
   /* *gravity* may have been tuned to any number: only a small fixnum is ours */
-  if (!(ds_position(x_, &xn, &xd) && ds_position(y_, &yn, &yd) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
+  if ((flags & DS_NOT_HERE) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST) ||
+      !(ds_position(x_, &xn, &xd) && ds_position(y_, &yn, &yd) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
         DS_SIZE(w_) && DS_SIZE(h_) &&
         (!(flags & DS_GRAVITY) || (DS_SMALL(ay_) && DS_SMALL(gravity_)))))
     return C_fix(-1);

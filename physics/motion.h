@@ -19,12 +19,10 @@ enum {
 
 /* the keys to write; their new values are out[0] .. out[5] in this order.
    With DS_X_RATIO the new x is the rational out[0] / out[6], with
-   DS_Y_RATIO y is out[1] / out[7]; with DS_X_FLONUM the new x is the
-   flonum fout[0], with DS_Y_FLONUM y is fout[1]. */
+   DS_Y_RATIO y is out[1] / out[7]. */
 enum {
   DS_WRITE_X = 1, DS_WRITE_Y = 2, DS_WRITE_VX = 4, DS_WRITE_VY = 8,
-  DS_WRITE_AY = 16, DS_WRITE_ON = 32, DS_X_RATIO = 64, DS_Y_RATIO = 128,
-  DS_X_FLONUM = 256, DS_Y_FLONUM = 512
+  DS_WRITE_AY = 16, DS_WRITE_ON = 32, DS_X_RATIO = 64, DS_Y_RATIO = 128
 };
 
 #endif

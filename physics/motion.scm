@@ -155,8 +155,7 @@
   ;; cost more than the arithmetic and kept the garbage collector busy.
   ;; This C allocates nothing: it reads the entity's numbers (fixnums
   ;; within +-2^40, and positions that are exact rationals of such
-  ;; fixnums with denominators below 2^20, so no sum overflows; in a
-  ;; scene without a map, flonum positions too) and
+  ;; fixnums with denominators below 2^20, so no sum overflows) and
   ;; `flags`, puts the new values in `out` and returns which keys to write
   ;; (a key that holds its new value already is not written, as entity-set
   ;; does). Same formulas in
@@ -186,22 +185,18 @@
   (define-c-constant write-on DS_WRITE_ON 32)
   (define-c-constant x-ratio DS_X_RATIO 64)
   (define-c-constant y-ratio DS_Y_RATIO 128)
-  (define-c-constant x-flonum DS_X_FLONUM 256)
-  (define-c-constant y-flonum DS_Y_FLONUM 512)
 
   (define fixnum-motion!
-    (foreign-lambda scheme-object "ds_fixnum_motion" scheme-object f64vector u8vector scheme-object
+    (foreign-lambda scheme-object "ds_fixnum_motion" scheme-object u8vector scheme-object
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object))
 
-  ;; The kernel's answer for a position: 'keep, out[n-slot], with the
-  ;; flonum bit the flonum fout[n-slot], or with the ratio bit the
-  ;; rational out[n-slot] / out[d-slot], in lowest terms already, so the
-  ;; ratnum is made without a gcd.
-  (define (kernel-position out fout writes write-bit flonum-bit ratio-bit n-slot d-slot)
+  ;; The kernel's answer for a position: 'keep, out[n-slot], or with the
+  ;; ratio bit the rational out[n-slot] / out[d-slot], in lowest terms
+  ;; already, so the ratnum is made without a gcd.
+  (define (kernel-position out writes write-bit ratio-bit n-slot d-slot)
     (cond ((fx= 0 (fxand writes write-bit)) 'keep)
-          ((not (fx= 0 (fxand writes flonum-bit))) (f64vector-ref fout n-slot))
           ((fx= 0 (fxand writes ratio-bit)) (vector-ref out n-slot))
           (else (##core#inline_allocate ("C_a_i_ratnum" 3) (vector-ref out n-slot)
                                         (vector-ref out d-slot)))))
@@ -214,8 +209,7 @@
   ;; origin, the tile size, the scene's collision mode) is read once. Each
   ;; entity whose numbers the kernel takes (above), with no
   ;; #:skip-pipelines, then goes through fixnum-motion!; any other one
-  ;; (flonums where there is a map, other rationals, bignums, a NaN, skips,
-  ;; an unknown mode)
+  ;; (flonums, other rationals, bignums, a NaN, skips, an unknown mode)
   ;; through motion-steps, the readable steps.
   ;; With ground? the pass also does ground detection (step 8), which
   ;; is only right when no entity of the scene is solid: the engine passes
@@ -238,8 +232,7 @@
            ;; an entity's own mode replaces the scene's
            (own-mode-flags (fxand scene-flags (fxnot flag-swept)))
            (gravity *gravity*)
-           (out (make-vector 8 1))
-           (fout (make-f64vector 2 0.0)))
+           (out (make-vector 8 1)))
       ;; An entity the C code leaves (see above).
       (define (general e)
         (let ((moved (motion-steps scene e dt controls?)))
@@ -270,11 +263,11 @@
                                       (fxior (fxior (if yp flag-y 0) (if vxp flag-vx 0))
                                              (fxior (if vyp flag-vy 0)
                                                     (fxior (if ayp flag-ay 0) (if onp flag-on 0)))))))
-                       (writes (fixnum-motion! out fout bytes map flags gravity (and skipp (cdr skipp))
+                       (writes (fixnum-motion! out bytes map flags gravity (and skipp (cdr skipp))
                                                x y w h vx vy ay (and onp (cdr onp)))))
                   (cond ((fx= writes 0) e)
                         ((fx< writes 0) (general e))
-                        ((fx= 0 (fxand writes (fxior (fxior x-ratio y-ratio) (fxior x-flonum y-flonum))))
+                        ((fx= 0 (fxand writes (fxior x-ratio y-ratio)))
                          (rewrite-motion e grav
                                          xp (if (fx= 0 (fxand writes write-x)) 'keep (vector-ref out 0))
                                          yp (if (fx= 0 (fxand writes write-y)) 'keep (vector-ref out 1))
@@ -282,10 +275,10 @@
                                          vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
                                          ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
                                          onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))
-                        (else                   ; a rational or flonum position
+                        (else                   ; a rational position
                          (rewrite-motion e grav
-                                         xp (kernel-position out fout writes write-x x-flonum x-ratio 0 6)
-                                         yp (kernel-position out fout writes write-y y-flonum y-ratio 1 7)
+                                         xp (kernel-position out writes write-x x-ratio 0 6)
+                                         yp (kernel-position out writes write-y y-ratio 1 7)
                                          vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
                                          vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
                                          ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
