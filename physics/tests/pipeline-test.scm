@@ -148,8 +148,8 @@
             (test-assert "... which is an error" (eq? 'error (car fast)))))
         (if grav '(#:x #:y #:vx #:vy #:ay) '(#:x #:y #:vx #:vy))))
      '(#t #f))
-    ;; Without a map, flonum positions take the kernel's flonum path:
-    ;; ten frames of each body, as the six steps make them.
+    ;; Without a map, bodies at flonum positions: ten frames of each, as
+    ;; the six steps make them.
     (for-each
      (lambda (plist)
        (let loop ((k 0) (e (plist->entity plist)))
