@@ -3,7 +3,8 @@
 ;;; Prints a table, the checksum lines of each scene, and writes one CSV
 ;;; row per (scene, mode, n or speed):
 ;;;   scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct
-;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [S1 S2 S3 S4 S5 S6 S7 steps ...]
+;;; Usage: bench [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] [--warm-up W] [--frames F]
+;;;              [S1 S2 S3 S4 S5 S6 S7 steps ...]
 
 (import scheme (chicken base) (chicken format) (chicken time) (chicken process-context)
         (chicken string) (chicken sort) (chicken gc) (chicken io) (chicken condition)
@@ -60,17 +61,48 @@
          (r (/ (round (* (inexact->exact x) scale)) scale)))
     (number->string (exact->inexact r))))
 
+;; The collector's work, counted by a hook CHICKEN's runtime calls after
+;; every collection: how many minor and major ones, and how many bytes the
+;; minor ones moved from the nursery to the heap (the growth of the heap's
+;; used part across each). Every collection empties the nursery (CHICKEN's
+;; C stack, which holds the calls' frames as well as new objects), so the
+;; nursery's size times the collections is what the run used of it.
+(foreign-declare "
+static long bench_minors, bench_majors, bench_promoted;
+static C_byte *bench_top;
+static void bench_count_gc(int mode, C_long ms) {
+  if (mode == 0) { bench_minors++; bench_promoted += C_fromspace_top - bench_top; }
+  else if (mode == 1) bench_majors++;
+  bench_top = C_fromspace_top;
+}")
+(foreign-code "bench_top = C_fromspace_top; C_post_gc_hook = bench_count_gc;")
+(define (gc-counts)
+  (list ((foreign-lambda* long () "C_return(bench_minors);"))
+        ((foreign-lambda* long () "C_return(bench_majors);"))
+        ((foreign-lambda* long () "C_return(bench_promoted);"))))
+(define nursery-bytes (vector-ref (##sys#memory-info) 1))
+(define counts-at-start '(0 0 0))
+
 ;; The start of a timed run. current-gc-milliseconds counts the time of
 ;; major collections since it was last called: calling it here starts
 ;; that count too, and report-gc! reads it at the end.
 (define (start-timing!)
   (current-gc-milliseconds)
+  (set! counts-at-start (gc-counts))
   (now))
 
-;; The garbage collector's share of a timed run (terminal only).
-(define (report-gc! gc-ms total-ms)
-  (printf "  run: ~a ms, of which garbage collection ~a ms (~a%)~%" total-ms gc-ms
-          (if (> total-ms 0) (round (/ (* 100 gc-ms) total-ms)) 0)))
+;; The garbage collector's share of a timed run (terminal only), and per
+;; body-frame (bodies times timed frames) how much of the nursery the run
+;; used and how many bytes it promoted to the heap.
+(define (report-gc! gc-ms total-ms body-frames)
+  (let* ((c (map - (gc-counts) counts-at-start))
+         (minors (car c)) (majors (cadr c)) (promoted (caddr c)))
+    (printf "  run: ~a ms, of which garbage collection ~a ms (~a%)~%" total-ms gc-ms
+            (if (> total-ms 0) (round (/ (* 100 gc-ms) total-ms)) 0))
+    (printf "  gc: ~a minor, ~a major; per body-frame ~a bytes of nursery, ~a bytes promoted~%"
+            minors majors
+            (round (/ (* (+ minors majors) nursery-bytes) body-frames))
+            (round (/ promoted body-frames)))))
 
 (define (sum key es) (foldl (lambda (acc e) (+ acc (entity-ref e key 0))) 0 es))
 
@@ -159,8 +191,8 @@
                                                 (cdr mode-times))))
                                   times))))))
     (for-each (lambda (mode-times)
-                (let ((ms (/ (median (cdr mode-times)) 600.0)))
-                  (report! scene-name (car mode-times) n #f 600 ms (/ (* 1000 ms) n) #f #f)))
+                (let ((ms (/ (median (cdr mode-times)) (exact->inexact (timed 600)))))
+                  (report! scene-name (car mode-times) n #f (timed 600) ms (/ (* 1000 ms) n) #f #f)))
               times)
     (printf "  peak resident set of the process so far: ~a MB~%" (peak-megabytes))))
 
@@ -169,17 +201,17 @@
 (define (s1-run n mode checksum? #!optional (scene-name "S1") (build s1-scene))
   (let-values (((scene speeds) (build n mode)))
     (let frames ((f 0) (scene scene) (start #f))
-      (cond ((= f 660)
+      (cond ((= f (+ (warm-up 60) (timed 600)))
              (when checksum?
                (let ((es (scene-entities scene)))
                  (printf "checksum ~a ~a n=~a sum-x=~a sum-y=~a on-ground=~a~%"
                          scene-name mode n (sum #:x es) (sum #:y es)
                          (length (filter-on-ground es)))))
              (let ((ms (- (now) start)))
-               (report-gc! (current-gc-milliseconds) ms)
+               (report-gc! (current-gc-milliseconds) ms (* n (timed 600)))
                ms))
             (else
-             (let ((start (if (= f 60) (start-timing!) start)))
+             (let ((start (if (= f (warm-up 60)) (start-timing!) start)))
                (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f) start)))))))
 
 (define (filter-on-ground es)
@@ -238,12 +270,15 @@
        steps))))
 
 ;;; S2: solid crowd.
-(define (s2-scene n)
+;; flonum?: positions as flonums (the mode 'flonum of S2, the spatial hash
+;; on the same movers at the same places).
+(define (s2-scene n flonum?)
   (reseed!)
   (let loop ((k 0) (movers '()))
     (if (= k n)
         (make-sprite-scene entities: (reverse movers))
         (let* ((x (modulo (rand) 2040)) (y (modulo (rand) 2040))
+               (x (if flonum? (exact->inexact x) x)) (y (if flonum? (exact->inexact y) y))
                (vx (- (modulo (rand) 5) 2)) (vy (- (modulo (rand) 5) 2)))
           (loop (+ k 1)
                 (cons (list (cons #:x x) (cons #:y y) (cons #:width 8) (cons #:height 8)
@@ -258,8 +293,8 @@
 
 (define (clamp-axis e pos vel)
   (let ((p (entity-ref e pos)))
-    (cond ((< p 0) (entity-set (entity-set e pos 0) vel (- (entity-ref e vel))))
-          ((> p 2040) (entity-set (entity-set e pos 2040) vel (- (entity-ref e vel))))
+    (cond ((< p 0) (entity-set (entity-set e pos (if (flonum? p) 0.0 0)) vel (- (entity-ref e vel))))
+          ((> p 2040) (entity-set (entity-set e pos (if (flonum? p) 2040.0 2040)) vel (- (entity-ref e vel))))
           (else e))))
 
 (define (s2-logic scene)
@@ -270,19 +305,20 @@
          (let repeat ((r 0) (times '()))
            (if (= r runs)
                times
-               (let frames ((f 0) (scene (s2-scene n)) (start #f))
-                 (cond ((= f 660)
+               (let frames ((f 0) (scene (s2-scene n (eq? method 'flonum))) (start #f))
+                 (cond ((= f (+ (warm-up 60) (timed 600)))
                         (when (= r 0)
                           (let ((es (scene-entities scene)))
                             (printf "checksum S2 ~a n=~a sum-x=~a sum-y=~a~%" method n
                                     (sum #:x es) (sum #:y es))))
-                        (report-gc! (current-gc-milliseconds) (- (now) start))
+                        (report-gc! (current-gc-milliseconds) (- (now) start) (* n (timed 600)))
                         (repeat (+ r 1) (cons (- (now) start) times)))
                        (else
-                        (let ((start (if (= f 60) (start-timing!) start)))
-                          (frames (+ f 1) (s2-logic (s2-step scene method)) start)))))))))
-    (let ((ms (/ (median times) 600.0)))
-      (report! "S2" method n #f 600 ms (/ (* 1000 ms) n) #f #f))))
+                        (let ((start (if (= f (warm-up 60)) (start-timing!) start)))
+                          (frames (+ f 1) (s2-logic (s2-step scene (if (eq? method 'flonum) 'spatial-hash method)))
+                                  start)))))))))
+    (let ((ms (/ (median times) (exact->inexact (timed 600)))))
+      (report! "S2" method n #f (timed 600) ms (/ (* 1000 ms) n) #f #f))))
 
 ;;; S3: accuracy against speed.
 (define s3-map
@@ -391,17 +427,18 @@
                (let-values (((scene speeds) (s1-scene n 'swept)))
                  (let* ((scene (scene-map-entities scene (lambda (s e) (entity-set e #:solid? #t)))))
                    (let frames ((f 0) (scene scene) (start #f))
-                     (cond ((= f 70)
+                     (cond ((= f (+ (warm-up 10) (timed 60)))
                             (when (= r 0)
                               (let ((es (scene-entities scene)))
                                 (printf "checksum S5 n=~a sum-x=~a sum-y=~a on-ground=~a~%"
                                         n (sum #:x es) (sum #:y es) (length (filter-on-ground es)))))
+                            (report-gc! (current-gc-milliseconds) (- (now) start) (* n (timed 60)))
                             (repeat (+ r 1) (cons (- (now) start) times)))
                            (else
-                            (let ((start (if (= f 10) (now) start)))
+                            (let ((start (if (= f (warm-up 10)) (start-timing!) start)))
                               (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f) start)))))))))))
-    (let ((ms (/ (median times) 60.0)))
-      (report! "S5" 'swept n #f 60 ms (/ (* 1000 ms) n) #f #f))))
+    (let ((ms (/ (median times) (exact->inexact (timed 60)))))
+      (report! "S5" 'swept n #f (timed 60) ms (/ (* 1000 ms) n) #f #f))))
 
 ;;; S6: n solid 16 px bodies piled on one spot, no map (docs/performance.org):
 ;;; every pair overlaps, so the push-apart of docs/physics.org visits all n(n-1)/2
@@ -443,11 +480,18 @@
     (error 'bench (sprintf "no directory ~s for the CSV file ~s (run from the repository root, or give --csv FILE)"
                            dir csv-file))))
 (define quick? (member "--quick" args))
-;; --mode M keeps only that mode: discrete or swept (S1, S3), all-pairs or
-;; spatial-hash (S2).
+;; --mode M keeps only that mode: discrete or swept (S1, S3), all-pairs,
+;; spatial-hash or flonum (S2: the spatial hash with flonum positions).
 (define only-mode (let ((m (flag-value "--mode" #f))) (and m (string->symbol m))))
 ;; --n N keeps only that size of S1 and S2 (and the step table's size).
 (define only-n (let ((n (flag-value "--n" #f))) (and n (string->number n))))
+;; --warm-up W and --frames F replace the warm-up and timed frame counts of
+;; S1, S2 and S5 (for measuring under a profiler; the checksums are then
+;; not those of the scenes' definition).
+(define only-warm-up (let ((w (flag-value "--warm-up" #f))) (and w (string->number w))))
+(define only-frames (let ((f (flag-value "--frames" #f))) (and f (string->number f))))
+(define (warm-up default) (or only-warm-up default))
+(define (timed default) (or only-frames default))
 (define (sizes ns) (if only-n (if (memv only-n ns) (list only-n) '()) ns))
 (define (modes ms) (if only-mode (if (memq only-mode ms) (list only-mode) '()) ms))
 (define (wanted? s)
@@ -463,7 +507,7 @@
   (let ((ms (modes '(discrete swept))))
     (unless (null? ms)
       (for-each (lambda (n) (run-s1 n ms runs))
-                (sizes (if quick? '(100 1000) '(100 1000 10000)))))))
+                (sizes (if quick? '(100 1000) '(100 1000 10000 16000)))))))
 (when (wanted? "S7")
   (let ((ms (modes '(discrete swept))))
     (unless (null? ms)
@@ -476,7 +520,9 @@
   (when (memq 'all-pairs (modes '(all-pairs)))
     (for-each (lambda (n) (run-s2 n 'all-pairs runs)) (sizes (if quick? '(100) '(100 1000)))))
   (when (memq 'spatial-hash (modes '(spatial-hash)))
-    (for-each (lambda (n) (run-s2 n 'spatial-hash runs)) (sizes (if quick? '(100) '(100 1000 5000))))))
+    (for-each (lambda (n) (run-s2 n 'spatial-hash runs)) (sizes (if quick? '(100) '(100 1000 5000)))))
+  (when (memq 'flonum (modes '(flonum)))
+    (for-each (lambda (n) (run-s2 n 'flonum runs)) (sizes (if quick? '(100) '(100 1000 5000))))))
 (when (wanted? "S3")
   (for-each (lambda (mode)
               (for-each (lambda (v) (run-s3 v mode runs))

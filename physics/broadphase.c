@@ -26,16 +26,32 @@ static C_word ds_cell(C_word v, C_word w, C_word size, int *ok) {
   if (!C_fitsinfixnump(c)) *ok = 0;
   return c;
 }
+/* A flonum coordinate's cell, with the operations of broadphase.scm's
+   cell-of and end-cell on a flonum, in the same order, so the same
+   doubles: floor((v + w) / size), v + w only when w is not 0 (Scheme adds
+   0 too, which changes no double but -0.0, whose floor is the same) */
+static C_word ds_flonum_cell(double v, C_word w, C_word size, int *ok) {
+  double c = floor((w == 0 ? v : v + (double)w) / (double)size);
+  if (!(c > -1e15 && c < 1e15) || !C_fitsinfixnump((C_word)c)) { *ok = 0; return 0; }
+  return (C_word)c;
+}
+/* the cell of coordinate v (a fixnum, a rational of fixnums or a flonum)
+   plus the integer w */
+static C_word ds_coord_cell(C_word v, C_word w, C_word size, int *ok) {
+  if (!C_immediatep(v) && C_block_header(v) == C_FLONUM_TAG)
+    return ds_flonum_cell(C_flonum_magnitude(v), w, size, ok);
+  return ds_cell(v, w, size, ok);
+}
 static C_word ds_span(C_word span, C_word x, C_word y, C_word w, C_word h,
                       C_word size, C_word large) {
   int ok = (w & C_FIXNUM_BIT) && (h & C_FIXNUM_BIT) && (size & C_FIXNUM_BIT)
            && C_unfix(size) > 0;
   C_word cx0, cy0, cx1, cy1;
   if (!ok) return C_fix(0);
-  cx0 = ds_cell(x, 0, C_unfix(size), &ok);
-  cy0 = ds_cell(y, 0, C_unfix(size), &ok);
-  cx1 = ds_cell(x, C_unfix(w), C_unfix(size), &ok);
-  cy1 = ds_cell(y, C_unfix(h), C_unfix(size), &ok);
+  cx0 = ds_coord_cell(x, 0, C_unfix(size), &ok);
+  cy0 = ds_coord_cell(y, 0, C_unfix(size), &ok);
+  cx1 = ds_coord_cell(x, C_unfix(w), C_unfix(size), &ok);
+  cy1 = ds_coord_cell(y, C_unfix(h), C_unfix(size), &ok);
   if (!ok) return C_fix(0);
   if (cx1 - cx0 > C_unfix(large) || cy1 - cy0 > C_unfix(large)) return C_fix(2);
   C_set_block_item(span, 0, C_fix(cx0));

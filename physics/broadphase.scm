@@ -53,10 +53,12 @@
   ;; The C of this module is broadphase.c.
   (foreign-declare "#include \"physics/broadphase.c\"")
 
-  ;; The common case of span-of in C: coordinates that are fixnums or
-  ;; rationals of fixnums, integer sizes and cell size. Fills `span` with
-  ;; the cells #(cx0 cy0 cx1 cy1) and returns 1, or 2 for a large box;
-  ;; 0 means "not this case" (flonums, bignums, a rational cell size) and
+  ;; The common case of span-of in C: coordinates that are fixnums,
+  ;; rationals of fixnums or flonums (with cell-of's double operations),
+  ;; integer sizes and cell size. Fills `span` with the cells
+  ;; #(cx0 cy0 cx1 cy1) and returns 1, or 2 for a large box; 0 means "not
+  ;; this case" (bignums, a rational or flonum cell size, a cell beyond the
+  ;; fixnums) and
   ;; the Scheme code decides. Computing the cells in Scheme made a closure
   ;; for every value a branch could have handed to a procedure call.
   (define fast-span!

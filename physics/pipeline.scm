@@ -179,6 +179,7 @@
   ;; ground detection looks only at the entity itself and the map, so it
   ;; joins the motion pass.
   (define (engine-pipeline scene dt)
+    (keep-heap-headroom!)
     (let* ((before (pipeline-needs (scene-entities scene)))
            (tweens? (needs? before need-tweens))
            (ground-in-motion? (ground-joins-motion? before))
@@ -217,7 +218,7 @@
              (when-needed need-particles
                           (cut scene-map-entities <> (lambda (s e) (step-particles s e dt))) _))))
 
-;; The names (as in contract-steps) of the steps engine-pipeline runs on
+  ;; The names (as in contract-steps) of the steps engine-pipeline runs on
   ;; this scene as it is: the motion steps always (the motion pass), each
   ;; other one only when some entity needs it, read from the same bits
   ;; engine-pipeline decides by. A tween's on-complete may make more
@@ -243,6 +244,30 @@
                            ((particles) (needs? bits need-particles))
                            (else #t))))      ; the motion pass
               (loop (cdr steps) (if run? (cons name out) out)))))))
+
+  ;;; The heap's headroom
+  ;; After a major collection CHICKEN grows its heap only when less than a
+  ;; fixed amount (4 MB by default, -:hf) would stay free in it. A scene
+  ;; whose live entities outgrow that amount then collects ever more often,
+  ;; each major collection copying all of them: the collector's work per
+  ;; body grew with the crowd (docs/performance.org, "Cost per body as a
+  ;; scene grows"). Each frame the engine asks for at least half of a heap
+  ;; half to stay free (never less than the program started with), so the
+  ;; heap grows with the live data, and a major collection, which copies
+  ;; the live data once, comes only after as many bytes were promoted: its
+  ;; share of a frame is the same per body at any size.
+  (foreign-declare "
+extern C_TLS C_uword C_heap_half_min_free;
+static C_uword ds_min_free_at_start;
+static int ds_min_free_read = 0;
+static void ds_keep_headroom(C_word heap_size) {
+  C_uword quarter = (C_uword)C_unfix(heap_size) / 4;
+  if (!ds_min_free_read) { ds_min_free_at_start = C_heap_half_min_free; ds_min_free_read = 1; }
+  C_heap_half_min_free = quarter > ds_min_free_at_start ? quarter : ds_min_free_at_start;
+}")
+  (define (keep-heap-headroom!)
+    ((foreign-lambda void "ds_keep_headroom" scheme-object)
+     (vector-ref (##sys#memory-info) 0)))
 
   ;; Tile ground detection may join the motion pass (one walk instead of
   ;; two) only when it reads nothing but the entity itself and the map:

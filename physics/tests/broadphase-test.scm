@@ -33,7 +33,11 @@
 
 ;; Runs both methods side by side; counts frames where they differ.
 (define (bp-compare n side frames)
-  (let loop ((f 0) (a (bp-crowd n side)) (b #f) (differ 0))
+  (bp-compare-with n side frames (lambda (es) es)))
+
+;; The same on the crowd as `prepare` makes it.
+(define (bp-compare-with n side frames prepare)
+  (let loop ((f 0) (a (prepare (bp-crowd n side))) (b #f) (differ 0))
     (let ((b (or b a)))
       (if (= f frames)
           differ
@@ -45,6 +49,15 @@
   (test "200 bodies, a dense 300 px arena, 100 frames" 0 (bp-compare 200 300 100))
   (test "400 bodies, a sparse 2000 px arena, 50 frames" 0 (bp-compare 400 2000 50))
   (test "60 bodies piled in 40 px, 100 frames" 0 (bp-compare 60 40 100))
+  ;; flonum positions (the hash's cells then come from C's doubles), some
+  ;; negative, some a hair below a cell's edge
+  (test "300 bodies at flonum positions, a 400 px arena around 0, 60 frames" 0
+        (bp-compare-with 300 400 60
+                         (lambda (es)
+                           (map (lambda (e)
+                                  (let ((x (entity-ref e #:x)) (y (entity-ref e #:y)))
+                                    (entity-set* e #:x (- (* 1.0 x) 200.25) #:y (- y 200 (* 1e-13 (bp-rand 3))))))
+                                es))))
   (let ((es (bp-crowd 300 250)))
     (test-assert "the crowd really collides"
                  (not (equal? es (resolve-entity-collisions es 'all-pairs)))))

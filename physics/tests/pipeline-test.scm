@@ -158,6 +158,22 @@
             (test-assert "... which is an error" (eq? 'error (car fast)))))
         (if grav '(#:x #:y #:vx #:vy #:ay) '(#:x #:y #:vx #:vy))))
      '(#t #f))
+    ;; Without a map, bodies at flonum positions: ten frames of each, as
+    ;; the six steps make them.
+    (for-each
+     (lambda (plist)
+       (let loop ((k 0) (e (plist->entity plist)))
+         (when (< k 10)
+           (let ((fast (step-motion (make-scene) e 16))
+                 (slow (pl-six-steps (make-scene) e)))
+             (if (or (= k 9) (not (equal? fast slow)))
+                 (test (sprintf "no map, flonum position ~s, frame ~a: the steps' result" plist k) slow fast))
+             (loop (+ k 1) slow)))))
+     (list (list #:x 0.1 #:y 3 #:vx 3 #:vy -2)
+           (list #:x -0.0 #:y -0.0 #:vx 0 #:vy 0)
+           (list #:x 5 #:y 2.75 #:vx -1 #:vy 1 #:gravity? #t #:ay -10 #:on-ground? #t)
+           (list #:y 1e300 #:vx 2 #:gravity? #t)
+           (list #:x 1.5 #:y 0.5 #:vx 1 #:vy 0 #:gravity? #t #:ay 0)))
     (test "an entity that does not move comes back itself" #t
           (let ((e (plist->entity (list #:x 0 #:y 0 #:vx 0 #:vy 0))))
             (eq? e (step-motion scene e 16))))))
