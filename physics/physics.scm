@@ -33,6 +33,6 @@
                     column-grid row-grid pass-map one-way-map?)
             (except (downstroke escape) escape-place)
             (except (downstroke tile-collisions)
-                    swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing?)
+                    swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing? slope-cut-of)
             (downstroke contacts) (downstroke motion) (downstroke groups) (downstroke touch)
             (downstroke ladders) (only (downstroke slopes) slope-surface)))

@@ -9,7 +9,7 @@
   (resolve-tile-collisions-x resolve-tile-collisions-y discrete-safe-speed tunnel-risk?
    ;; for sibling modules only: the rules behind the steps, for the motion
    ;; pass and ground detection
-   swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing?)
+   swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing? slope-cut-of)
 
   (import scheme (chicken base) (chicken format) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke map)

@@ -13,7 +13,8 @@
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke map)
-          (downstroke body) (downstroke tile-grid))
+          (downstroke body) (downstroke tile-grid)
+          (only (downstroke tile-collisions) slope-cut-of))
 
   (foreign-declare "#include \"physics/body.h\"")
 
@@ -91,12 +92,16 @@
            (x (num entity #:x)) (y (num entity #:y))
            (w (num entity #:width)) (h (num entity #:height))
            (drop? (entity-ref entity #:drop-through? #f))
+           ;; near a slope the sides are the box the tile passes test, the
+           ;; body's without its lowest px (docs/physics.org, "Slopes"): the
+           ;; flat tile at a slope's top is not a wall to a body on the slope
+           (side-h (if tm (- h (slope-cut-of tm entity 0 0)) h))
            (before (entity-ref entity #:contacts '()))
            (now (let loop ((ss sides) (out '()))
                   (if (null? ss)
                       (reverse out)
                       (let* ((side (car ss))
-                             (tiles (if tm (side-tiles tm side x y w h drop?) '()))
+                             (tiles (if tm (side-tiles tm side x y w (if (memq side '(left right)) side-h h) drop?) '()))
                              (bodies (let walk ((es (scene-solid-entities scene)) (acc '()))
                                        (cond ((null? es) (reverse acc))
                                              ((and (not (eq? (car es) entity))

@@ -30,9 +30,11 @@
 
 ;; The floor under x, worked out from the map as docs/physics.org
 ;; states it: the topmost slope line or solid top in the column.
-(define (sl-floor tm x)
+;; The first floor at x from row `from` down (a walker under a ledge
+;; scans from its own row).
+(define (sl-floor tm x #!optional (from 0))
   (let ((col (floor (/ x 16))))
-    (let loop ((r 0))
+    (let loop ((r from))
       (cond ((= r (tilemap-height tm)) #f)
             ((tilemap-slope tm col r)
              => (lambda (s) (- (* (+ r 1) 16) (+ (car s) (/ (* (- (cdr s) (car s)) (- x (* col 16))) 16)))))
@@ -190,5 +192,19 @@
                 (list off air)
                 (let ((f (car fs)))
                   (loop (cdr fs)
-                        (if (= (+ (cadr f) 16) (sl-floor tm (+ (car f) 8))) off (+ off 1))
+                        (if (= (+ (cadr f) 16) (sl-floor tm (+ (car f) 8) 11)) off (+ off 1))
                         (if (caddr f) air (+ air 1)))))))))
+
+;; Contacts near a slope (docs/physics.org, "Slopes"): a body's sides are
+;; the box the tile passes test, so the flat tile at the top of a slope is
+;; no wall to a body half way up it; a wall as tall as the body still is.
+(test-group "contacts beside a slope"
+  (define (right-tiles rows)
+    (let* ((tm (list->tilemap rows slopes: '((2 0 16))))
+           (body (sl-body 32 8 16 16 0 #:contacts? #t))  ; foot x 40: the floor 8 px up, y + h = 24
+           (scene (make-scene tilemap: tm entities: (list body))))
+      (entity-touch-tiles (detect-contacts scene body 16) 'right)))
+  (test "on the slope, beside the flat tile it leads to: no wall on the right" '()
+        (right-tiles '((0 0 0 0) (0 0 2 1) (1 1 1 1))))
+  (test "a wall two tiles tall there: a wall on the right" '(solid)
+        (right-tiles '((0 0 0 1) (0 0 2 1) (1 1 1 1)))))
