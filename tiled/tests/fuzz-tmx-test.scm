@@ -144,7 +144,7 @@
 
 (test-group "mutated maps"
   (parameterize ((tilemap-max-cells 100000))
-    (let ((start (current-milliseconds)))
+    (begin
       (for-each (lambda (f) (fuzz-tmx-run f f))
                 '("enc-csv.tmx" "enc-xml.tmx" "enc-base64.tmx" "enc-zlib.tmx" "enc-gzip.tmx"
                   "enc-zstd.tmx" "infinite.tmx" "features.tmx"
@@ -159,6 +159,4 @@
       (fuzz-tmx-run "json/level.tmj" "json/level.tmj")
       (fuzz-tmx-run "json/level.tmj" "json/terrain.tsj")
       (fuzz-tmx-run "json/level.tmj" "json/enemy.tj")
-      (fuzz-tmx-run "json/level.tmx" "json/terrain.tsj")
-      (test-assert "the mutation test ran in under 60 s"
-                   (< (- (current-milliseconds) start) 60000)))))
+      (fuzz-tmx-run "json/level.tmx" "json/terrain.tsj"))))
