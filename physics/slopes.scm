@@ -13,7 +13,7 @@
   (slope-surface
    ;; for sibling modules only: the rules the tile passes and ground
    ;; detection read
-   slope-map? slope-cut foot-near-slope? foot-ground foot-on-slope?)
+   slope-map? slope-cut foot-near-slope? foot-ground foot-on-slope? foot-slope-cell)
 
   (import scheme (chicken base) (downstroke map) (downstroke tile-grid))
 
@@ -80,12 +80,18 @@
                      level
                      (rows (+ r 1)))))))))
 
-  ;; Whether the foot of a box at (x, y) of w x h stands on a slope's
-  ;; floor: ground detection counts it.
-  (define (foot-on-slope? tm x y w h)
+  ;; The slope cell (col . row) whose floor the foot of a box at (x, y)
+  ;; of w x h stands on exactly, or #f: a slope cell in the foot's column,
+  ;; in row floor(b/T) or ceil(b/T) - 1 (b = y + h), whose line at the
+  ;; foot's x is b. Ground detection counts it; contacts name it.
+  (define (foot-slope-cell tm x y w h)
     (let* ((fx (+ x (/ w 2))) (fy (+ y h))
            (th (tilemap-tile-height tm))
            (col (cell-of fx (tilemap-tile-width tm))))
-      (let ((on? (lambda (r) (let ((s (slope-surface tm col r fx))) (and s (= s fy))))))
+      (let ((on? (lambda (r) (let ((s (slope-surface tm col r fx))) (and s (= s fy) (cons col r))))))
         (or (on? (cell-of fy th)) (on? (- (cell-ceiling fy th) 1))))))
+
+  ;; Whether the foot of a box at (x, y) of w x h stands on a slope's
+  ;; floor: ground detection counts it.
+  (define (foot-on-slope? tm x y w h) (and (foot-slope-cell tm x y w h) #t))
 )

@@ -14,7 +14,8 @@
   (import scheme (chicken base) (chicken fixnum) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke map)
           (downstroke body) (downstroke tile-grid)
-          (only (downstroke tile-collisions) slope-cut-of))
+          (only (downstroke tile-collisions) slope-cut-of)
+          (only (downstroke slopes) slope-map? foot-slope-cell))
 
   (foreign-declare "#include \"physics/body.h\"")
 
@@ -27,25 +28,31 @@
       (and (integer? q) (->integer q))))
 
   ;; What a touched tile is: its kind, else solid, ladder (a ladder's
-  ;; one-way top) or one-way.
+  ;; one-way top), slope or one-way.
   (define (tile-name tm col row)
     (or (tilemap-kind tm col row)
         (cond ((tilemap-solid? tm col row) 'solid)
               ((tilemap-ladder? tm col row) 'ladder)
-              (else 'one-way))))
+              ((tilemap-one-way? tm col row) 'one-way)
+              (else 'slope))))
 
   ;; The tiles of line `line` across cells lo..hi that hold a body's side:
-  ;; solid ones, and one-way ones when one-way? (a floor).
-  (define (touched-tiles tm line lo hi row-line? one-way?)
-    (let loop ((c hi) (out '()))
+  ;; solid ones, and one-way ones when one-way? (a floor). `slope`: the
+  ;; slope cell (col . row) the foot (head) is on, or #f; it is named in
+  ;; its column's place, before that column's cell on the line.
+  (define (touched-tiles tm line lo hi row-line? one-way? #!optional slope)
+    (let loop ((c hi) (out '()) (slope slope))
       (if (< c lo)
-          (dedupe out)
-          (let* ((col (if row-line? c line)) (row (if row-line? line c)))
+          (dedupe (if slope (cons (tile-name tm (car slope) (cdr slope)) out) out))
+          (let* ((col (if row-line? c line)) (row (if row-line? line c))
+                 (out (if (or (tilemap-solid? tm col row)
+                              (and one-way? (tilemap-one-way? tm col row)))
+                          (cons (tile-name tm col row) out)
+                          out))
+                 (here? (and slope (= (car slope) c))))
             (loop (- c 1)
-                  (if (or (tilemap-solid? tm col row)
-                          (and one-way? (tilemap-one-way? tm col row)))
-                      (cons (tile-name tm col row) out)
-                      out))))))
+                  (if here? (cons (tile-name tm (car slope) (cdr slope)) out) out)
+                  (and (not here?) slope))))))
 
   (define (dedupe ls)
     (let loop ((ls ls) (out '()))
@@ -58,8 +65,12 @@
   (define (side-tiles tm side x y w h drop?)
     (let ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)))
       (case side
-        ((floor) (let ((r (on-line (+ y h) th)))
-                   (if r (touched-tiles tm r (span-first x tw) (span-last x w tw) #t (not drop?)) '())))
+        ;; a foot exactly on a slope's line touches that slope cell
+        ((floor) (let ((r (on-line (+ y h) th))
+                       (slope (and (slope-map? tm) (foot-slope-cell tm x y w h))))
+                   (cond (r (touched-tiles tm r (span-first x tw) (span-last x w tw) #t (not drop?) slope))
+                         (slope (list (tile-name tm (car slope) (cdr slope))))
+                         (else '()))))
         ((ceiling) (let ((r (on-line y th)))
                      (if r (touched-tiles tm (- r 1) (span-first x tw) (span-last x w tw) #t #f) '())))
         ((left) (let ((c (on-line x tw)))
