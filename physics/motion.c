@@ -106,7 +106,7 @@ static int ds_near_slope(const unsigned char *bytes, long cols, long rows, long 
   long r, c;
   for (r = r0; r <= r1; r++)
     for (c = c0; c <= c1; c++)
-      if (bytes[r * cols + c] == 3) return 1;
+      if (bytes[r * cols + c] >= 3) return 1;   /* a floor (3) or ceiling (4) slope */
   return 0;
 }
 

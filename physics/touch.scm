@@ -14,8 +14,8 @@
   (import scheme (chicken base) (chicken fixnum) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke map)
           (downstroke body) (downstroke tile-grid)
-          (only (downstroke tile-collisions) slope-cut-of)
-          (only (downstroke slopes) slope-map? foot-slope-cell))
+          (only (downstroke tile-collisions) slope-cut-of ceiling-cut-of)
+          (only (downstroke slopes) slope-map? foot-slope-cell head-ceiling-cell))
 
   (foreign-declare "#include \"physics/body.h\"")
 
@@ -71,8 +71,12 @@
                    (cond (r (touched-tiles tm r (span-first x tw) (span-last x w tw) #t (not drop?) slope))
                          (slope (list (tile-name tm (car slope) (cdr slope))))
                          (else '()))))
-        ((ceiling) (let ((r (on-line y th)))
-                     (if r (touched-tiles tm (- r 1) (span-first x tw) (span-last x w tw) #t #f) '())))
+        ;; a head exactly on a ceiling slope's line touches that cell
+        ((ceiling) (let ((r (on-line y th))
+                         (slope (and (slope-map? tm) (head-ceiling-cell tm x y w))))
+                     (cond (r (touched-tiles tm (- r 1) (span-first x tw) (span-last x w tw) #t #f slope))
+                           (slope (list (tile-name tm (car slope) (cdr slope))))
+                           (else '()))))
         ((left) (let ((c (on-line x tw)))
                   (if c (touched-tiles tm (- c 1) (span-first y th) (span-last y h th) #f #f) '())))
         (else (let ((c (on-line (+ x w) tw)))
@@ -105,14 +109,20 @@
            (drop? (entity-ref entity #:drop-through? #f))
            ;; near a slope the sides are the box the tile passes test, the
            ;; body's without its lowest px (docs/physics.org, "Slopes"): the
-           ;; flat tile at a slope's top is not a wall to a body on the slope
-           (side-h (if tm (- h (slope-cut-of tm entity 0 0)) h))
+           ;; flat tile at a slope's top is not a wall to a body on the slope;
+           ;; near a ceiling slope, without its top px too
+           (cut (if tm (slope-cut-of tm entity 0 0) 0))
+           (top-cut (or (and tm (ceiling-cut-of tm entity 0 0 cut)) 0))
+           (side-y (+ y top-cut))
+           (side-h (- h cut top-cut))
            (before (entity-ref entity #:contacts '()))
            (now (let loop ((ss sides) (out '()))
                   (if (null? ss)
                       (reverse out)
                       (let* ((side (car ss))
-                             (tiles (if tm (side-tiles tm side x y w (if (memq side '(left right)) side-h h) drop?) '()))
+                             (tiles (cond ((not tm) '())
+                                          ((memq side '(left right)) (side-tiles tm side x side-y w side-h drop?))
+                                          (else (side-tiles tm side x y w h drop?))))
                              (bodies (let walk ((es (scene-solid-entities scene)) (acc '()))
                                        (cond ((null? es) (reverse acc))
                                              ((and (not (eq? (car es) entity))
