@@ -182,6 +182,40 @@
           (list (tilemap-ceiling-slope tm 0 0) (tilemap-ceiling-slope tm 1 0) (tilemap-ceiling-slope tm 2 0)
                 (tilemap-solid? tm 3 0)))))
 
+;; docs/physics.org, "Flipped and turned slopes": Tiled's diagonal flip
+;; (its 90 degree turns) turns a slope's solid shape; a 45 degree
+;; triangle turned is again a floor or a ceiling, a 22.5 degree one is
+;; not, and the map does not load.
+(test-group "slopes turned by Tiled's diagonal flip"
+  (define d #x20000000) (define h #x80000000) (define v #x40000000)
+  (tk-tmx tk-path (string-append (tk-tile 0 '("slope-left" "int" "0") '("slope-right" "int" "16"))
+                                 (tk-tile 1 '("slope-left" "int" "0") '("slope-right" "int" "8"))
+                                 (tk-tile 2 '("ceiling-left" "int" "16") '("ceiling-right" "int" "0")))
+          ;; layer "over", row 1: tile 0 (gid 1) flipped diagonally, turned
+          ;; 90 degrees clockwise (diagonal + horizontal), anticlockwise
+          ;; (diagonal + vertical), and tile 2 (gid 3) flipped diagonally
+          (sprintf "0,0,0,0,~a,~a,~a,~a" (+ 1 d) (+ 1 d h) (+ 1 d v) (+ 3 d)))
+  (let ((tm (load-tilemap tk-path)))
+    (test "the 45 degree floor 0 16 transposed is itself; turned clockwise 16 0; anticlockwise a ceiling 0 16"
+          '((0 . 16) (16 . 0) #f (0 . 16))
+          (list (tilemap-slope tm 0 1) (tilemap-slope tm 1 1) (tilemap-slope tm 2 1) (tilemap-ceiling-slope tm 2 1)))
+    (test "the ceiling 16 0 (the top-left triangle) transposed is itself" '(16 . 0)
+          (tilemap-ceiling-slope tm 3 1)))
+  (test "list->tilemap: diagonal + both flips of the floor 0 16 is the ceiling 16 0" '(16 . 0)
+        (tilemap-ceiling-slope (list->tilemap (list (list (+ 5 d h v))) slopes: '((5 0 16))) 0 0))
+  (tk-tmx tk-path (tk-tile 1 '("slope-left" "int" "0") '("slope-right" "int" "8"))
+          (sprintf "0,0,0,0,0,~a,0,0" (+ 2 d h)))
+  (test-assert "a 22.5 degree slope turned: the error names the file, the layer, the cell and the tile"
+               (let ((msg (tk-load-error tk-path)))
+                 (and msg
+                      (substring-index tk-path msg) (substring-index "\"over\"" msg)
+                      (substring-index "(1, 1)" msg) (substring-index "tile 1 of tileset \"kinds\"" msg)
+                      #t)))
+  (test-error "list->tilemap: a turned 22.5 degree slope is an error"
+              (list->tilemap (list (list (+ 5 d))) slopes: '((5 0 8))))
+  (test-error "a diagonal flip of a slope on tiles that are not square"
+              (list->tilemap (list (list (+ 5 d))) tile-width: 16 tile-height: 8 slopes: '((5 0 8)))))
+
 (test-group "slope tiles: mistakes are named at load"
   (define (names? tiles . words)
     (tk-tmx tk-path tiles)
