@@ -21,14 +21,28 @@
   (slope-surface ceiling-surface
    ;; for sibling modules only: the rules the tile passes and ground
    ;; detection read
-   slope-map? slope-cut foot-near-slope? foot-ground foot-on-slope? foot-slope-cell
+   slope-map? ceiling-map? slope-cut foot-near-slope? foot-ground foot-on-slope? foot-slope-cell
    head-near-ceiling? head-ceiling head-wall head-ceiling-cell)
 
-  (import scheme (chicken base) (downstroke map) (downstroke tile-grid))
+  (import scheme (chicken base) (chicken fixnum) srfi-4 (downstroke map) (downstroke tile-grid))
 
   ;; Whether the map has slope cells at all: a map without any pays this
   ;; one test per tile pass.
   (define (slope-map? tm) (and (tilemap-slopes tm) #t))
+
+  ;; Whether the map has ceiling slope cells (grid byte 4): a map with
+  ;; floor slopes only pays this one test per tile pass for ceilings. The
+  ;; answer for the last map asked about is kept.
+  (define last-ceiling (cons #f #f))     ; (tilemap . answer)
+  (define (ceiling-map? tm)
+    (and (tilemap-slopes tm)
+         (if (eq? (car last-ceiling) tm)
+             (cdr last-ceiling)
+             (let* ((bytes (tilemap-solid-grid tm))
+                    (answer (let loop ((i (fx- (u8vector-length bytes) 1)))
+                              (and (fx>= i 0) (or (fx= 4 (u8vector-ref bytes i)) (loop (fx- i 1)))))))
+               (set! last-ceiling (cons tm answer))
+               answer))))
 
   ;; The y of the floor of slope cell (col, row) at x (any x; the line
   ;; goes on beyond the cell's edges), or #f when the cell is no slope.

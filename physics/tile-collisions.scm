@@ -206,12 +206,12 @@
   ;; of the box's top the tile passes leave out, when a ceiling slope cell
   ;; lies in the columns the head crossed on x this frame (x - mx + w/2 to
   ;; x + w/2), in the rows within that much of its path on y (y - my to
-  ;; y); #f elsewhere and on maps without slopes. It is
+  ;; y); #f elsewhere and on maps without ceiling slopes. It is
   ;; w/2 + |mx| + max(-my, 0), but never more than h - 1 - cut (cut: the
   ;; bottom's, slope-cut-of), so that a pixel row of the box is left; it
   ;; may be 0, and the head's rules apply all the same.
   (define (ceiling-cut-of tm entity mx my cut)
-    (and (slope-map? tm)
+    (and (ceiling-map? tm)
          (let* ((x (num entity #:x)) (w (num entity #:width)) (h (num entity #:height))
                 (y (num entity #:y))
                 (d (max 0 (min (- h 1 cut) (+ (/ w 2) (abs mx) (max (- my) 0)))))
@@ -315,9 +315,18 @@
            (stop (cond ((and box foot) (min box foot))
                        ((and box head) (max box head))
                        (else (or box foot head)))))
-      (if stop
-          (entity-set* entity #:y stop #:vy (rebound entity v))
-          entity)))
+      (cond ((and head? stop (> v 0) (< stop (num entity #:y)) (not (zero? mx))
+                  (let ((ceiling (head-ceiling tm (+ (num entity #:x) (/ (num entity #:width) 2))
+                                               stop (num entity #:y))))
+                    (and ceiling (> ceiling stop))))
+             ;; lifted by the floor into a ceiling above its head: the body
+             ;; does not fit there, and goes back to where this frame's x
+             ;; motion started, stopped on x as by a wall
+             (land-near-slope (entity-set* entity #:x (- (num entity #:x) mx)
+                                           #:vx (rebound entity (num entity #:vx)))
+                              tm swept sy 0 cut climbers? head? top-cut))
+            (stop (entity-set* entity #:y stop #:vy (rebound entity v)))
+            (else entity))))
 
   (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
     guard: (scene-tilemap scene)

@@ -15,7 +15,7 @@
           (downstroke entity) (downstroke scene) (downstroke map)
           (downstroke body) (downstroke tile-grid)
           (only (downstroke tile-collisions) slope-cut-of ceiling-cut-of)
-          (only (downstroke slopes) slope-map? foot-slope-cell head-ceiling-cell))
+          (only (downstroke slopes) slope-map? ceiling-map? foot-slope-cell head-ceiling-cell))
 
   (foreign-declare "#include \"physics/body.h\"")
 
@@ -73,7 +73,7 @@
                          (else '()))))
         ;; a head exactly on a ceiling slope's line touches that cell
         ((ceiling) (let ((r (on-line y th))
-                         (slope (and (slope-map? tm) (head-ceiling-cell tm x y w))))
+                         (slope (and (ceiling-map? tm) (head-ceiling-cell tm x y w))))
                      (cond (r (touched-tiles tm (- r 1) (span-first x tw) (span-last x w tw) #t #f slope))
                            (slope (list (tile-name tm (car slope) (cdr slope))))
                            (else '()))))

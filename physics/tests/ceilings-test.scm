@@ -147,6 +147,36 @@
            (map (lambda (f) (list (car f) (cadr f)))
                 (list-tail (cs-run pipeline mode cs-45 (cs-body 106 18 16 16 #:vx -2 #:vy -3) 5 #:vx -2 #:vy -3) 2))))))
 
+;; A tunnel that narrows from both sides: a 45 degree floor (tile 3, 0 ->
+;; 16, row 3, column 3) rises under a 45 degree ceiling (tile 5, 0 -> 16,
+;; row 1, column 3). A 24 px tall body walking right is lifted by the
+;; floor; where a frame's lift would take its head above the ceiling it
+;; does not fit, and the frame's x motion is undone: its head never goes
+;; into the ceiling and its foot stays on the floor. It fits up to head
+;; x 60 (foot on 64 - 12, head on 16 + 12), so it stops at x 52 when its
+;; steps land there (1 and 2 px/frame from x 20) and at x 50 at 3 px/frame.
+(define cs-tunnel
+  (list->tilemap '((1 1 1 1 1 1 1) (0 0 0 5 1 1 1) (0 0 0 0 0 0 0) (0 0 0 3 1 1 1) (1 1 1 1 1 1 1))
+                 ceiling-slopes: '((5 0 16)) slopes: '((3 0 16))))
+
+(test-group "a tunnel narrowing from both sides: stopped where the body no longer fits"
+  (define (ceiling-at hx) (cond ((< hx 48) 16) ((< hx 64) (+ 16 (- hx 48))) (else 32)))
+  (define (floor-at fx) (cond ((< fx 48) 64) ((< fx 64) (- 64 (- fx 48))) (else 48)))
+  (cs-each
+   (lambda (mode pipeline name)
+     (for-each
+      (lambda (vx stop)
+        (let ((fs (cs-run pipeline mode cs-tunnel (cs-body 20 40 16 24 #:vx vx #:gravity? #t) 40 #:vx vx)))
+          (test (sprintf "~a px/frame (~a, ~a): stops at x ~a, head under the ceiling and foot on the floor every frame"
+                         vx name mode stop)
+                (list stop #t)
+                (list (car (cs-last fs))
+                      (cs-all? (lambda (f) (let ((hx (+ (car f) 8)))
+                                             (and (>= (cadr f) (ceiling-at hx))
+                                                  (= (+ (cadr f) 24) (floor-at hx)))))
+                               fs)))))
+      '(1 2 3) '(52 52 50)))))
+
 (test-group "contacts: a head on a ceiling slope's line touches it"
   (define (contacts tm e n . keep)
     (let loop ((s (make-scene tilemap: tm entities: (list e))) (k 0))
