@@ -508,9 +508,10 @@
   ;; never both pairs), else from a collision polygon drawn in Tiled that
   ;; has points on both the tile's left edge (x 0) and its right edge (x
   ;; tile width): a polygon with both top corners and not both bottom
-  ;; ones is a ceiling, whose lowest point on each edge gives that edge's
-  ;; depth; any other is a floor, whose highest point on each edge gives
-  ;; that edge's height. A floor polygon whose two heights are both the
+  ;; ones, every point on the left or right edge, is a ceiling, whose
+  ;; lowest point on each edge gives that edge's depth (not both 0); any
+  ;; other is a floor, whose highest point on each edge gives that edge's
+  ;; height. A floor polygon whose two heights are both the
   ;; tile's full height is a plain solid tile. #f when the tile is no
   ;; slope.
   (define (tile-slope t props tw th where)
@@ -546,10 +547,11 @@
                                                     (if (and (= (car p) x) (or (not best) (pick (cdr p) best))) (cdr p) best))
                                                   #f pts)))
                 (corner? (lambda (x y) (any (lambda (p) (and (= (car p) x) (= (cdr p) y))) pts))))
-           (if (and (corner? 0 0) (corner? tw 0) (not (and (corner? 0 th) (corner? tw th))))
-               (let ((dl (on-edge 0 >)) (dr (on-edge tw >)))
-                 (and (<= 0 dl th) (<= 0 dr th)
-                      (cons 'ceiling (cons (->exact dl) (->exact dr)))))
+           (or (and (corner? 0 0) (corner? tw 0) (not (and (corner? 0 th) (corner? tw th)))
+                    (every-on-edge? pts tw)
+                    (let ((dl (on-edge 0 >)) (dr (on-edge tw >)))
+                      (and (<= 0 dl th) (<= 0 dr th) (not (and (= dl 0) (= dr 0)))
+                           (cons 'ceiling (cons (->exact dl) (->exact dr))))))
                (let ((yl (on-edge 0 <)) (yr (on-edge tw <)))
                  (and yl yr (<= 0 yl th) (<= 0 yr th)
                       (let ((l (->exact (- th yl))) (r (->exact (- th yr))))
