@@ -670,7 +670,8 @@
       (code-slopes 'ceiling "ceiling-slopes:" extra-ceilings)
       (and any? table)))
 
-  ;; The solid grid: 0 empty, 1 solid, 2 one-way, 3 slope (4 for a ceiling slope, once slope-grid has read its flips). A non-zero gid
+  ;; The solid grid: 0 empty, 1 solid, 2 one-way, 3 slope (slope-grid
+  ;; then makes a cell whose flips leave a ceiling slope 4). A non-zero gid
   ;; of a colliding layer is solid, unless its tile says collides false or
   ;; ladder (then it adds nothing here), is a slope (3) or one-way (2); a
   ;; solid tile of another layer in the same cell overrides either, and a
