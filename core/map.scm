@@ -1017,10 +1017,15 @@
     (let ((i (cell-index 'tilemap-solid? tm col row)))
       (and i (fx= 1 (u8vector-ref (tilemap-solid-grid tm) i)))))
 
-  ;; Whether the cell is a one-way platform (and not solid).
+  ;; Whether the cell is a one-way platform (and not solid): a one-way
+  ;; tile, a ladder's top, or a ceiling slope, whose top edge is solid.
   (define (tilemap-one-way? tm col row)
     (let ((i (cell-index 'tilemap-one-way? tm col row)))
-      (and i (fx= 2 (u8vector-ref (tilemap-solid-grid tm) i)))))
+      (and i (one-way-byte? (u8vector-ref (tilemap-solid-grid tm) i)))))
+
+  ;; The solid grid's bytes whose cell holds a body landing from above and
+  ;; lets one through from below (physics/motion.c's DS_ONE_WAY says the same).
+  (define (one-way-byte? b) (or (fx= b 2) (fx= b 4)))
 
   ;; The kind of the cell (a symbol, from its tile's `kind` property), or
   ;; #f: O(1), a byte of a grid made when the map was.

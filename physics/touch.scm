@@ -33,6 +33,7 @@
     (or (tilemap-kind tm col row)
         (cond ((tilemap-solid? tm col row) 'solid)
               ((tilemap-ladder? tm col row) 'ladder)
+              ((tilemap-ceiling-slope tm col row) 'slope)
               ((tilemap-one-way? tm col row) 'one-way)
               (else 'slope))))
 

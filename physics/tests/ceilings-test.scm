@@ -59,8 +59,8 @@
             '(swept discrete)))
 
 (test-group "ceiling slope cells"
-  (test "tilemap-ceiling-slope: (left . right) depths; tilemap-slope #f; not solid, not one-way"
-        '((0 . 16) (16 . 0) #f #f #f)
+  (test "tilemap-ceiling-slope: (left . right) depths; tilemap-slope #f; not solid; one-way (its top edge)"
+        '((0 . 16) (16 . 0) #f #f #t)
         (list (tilemap-ceiling-slope cs-45 3 1) (tilemap-ceiling-slope cs-45 6 1)
               (tilemap-slope cs-45 3 1) (tilemap-solid? cs-45 3 1) (tilemap-one-way? cs-45 3 1)))
   (test "no ceiling slope on other cells or on maps without" '(#f #f #f)
@@ -127,6 +127,39 @@
               (reverse out)
               (let* ((s (engine-pipeline s 16)) (e (car (scene-entities s))))
                 (loop s (+ k 1) (cons (list (entity-ref e #:x) (entity-ref e #:y) (entity-ref e #:vy)) out)))))))
+
+;; A ceiling slope's top edge is solid (its solid part lies above the
+;; line): a body falling onto it from above lands there, as on a one-way
+;; platform, at y = 64 - h, from any fall speed, and stands. Row 4 of
+;; cs-float holds tile 5 (0 -> 16) and tile 6 (16 -> 0) with nothing above.
+(define cs-float
+  (list->tilemap '((0 0 0 0 0 0 0 0)
+                   (0 0 0 0 0 0 0 0)
+                   (0 0 0 0 0 0 0 0)
+                   (0 0 0 0 0 0 0 0)
+                   (0 0 0 5 6 0 0 0)
+                   (0 0 0 0 0 0 0 0)
+                   (1 1 1 1 1 1 1 1))
+                 ceiling-slopes: '((5 0 16) (6 16 0))))
+
+(test-group "landing on a ceiling slope's top: its top edge holds a body as a one-way platform does"
+  (cs-each
+   (lambda (mode pipeline name)
+     ;; swept mode from any speed; discrete mode tests where the box ends,
+     ;; so (as on any tile) only up to a tile a frame
+     (test (sprintf "~a, ~a: falling 1 to ~a px/frame from y 40 onto x 52 ends at y 48" name mode
+                    (if (eq? mode 'swept) 60 16))
+           #t
+           (let loop ((v 1))
+             (or (> v (if (eq? mode 'swept) 60 16))
+                 (let ((f (car (cs-run pipeline mode cs-float (cs-body 52 40 16 16 #:vy v) 1))))
+                   (and (equal? (list (car f) (cadr f)) (list 52 (min 48 (+ 40 v)))) (loop (+ v 1)))))))
+     (test (sprintf "~a, ~a: a body standing there with gravity stays 30 frames" name mode)
+           '(52 48 #t)
+           (cs-last (cs-run pipeline mode cs-float (cs-body 52 48 16 16 #:gravity? #t #:vy 0) 30)))
+     (test (sprintf "~a, ~a: a body rising into the cell from below stops its head on the line" name mode)
+           '(52 76 #f)
+           (car (cs-run pipeline mode cs-float (cs-body 52 80 16 16 #:vy -20) 1))))))
 
 ;; Under tile 6 (the ceiling rising to the right) a body rising to the
 ;; right slides up along it: the game sets #:vx 2 #:vy -3 each frame, and

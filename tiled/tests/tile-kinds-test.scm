@@ -174,7 +174,7 @@
           (list (tilemap-ceiling-slope tm 0 1) (tilemap-ceiling-slope tm 1 1)))
     (test "a ceiling slope flipped vertically: a floor slope with its depths as heights" '((0 . 16) #f)
           (list (tilemap-slope tm 2 1) (tilemap-ceiling-slope tm 2 1)))
-    (test "neither solid nor one-way" '(#f #f)
+    (test "not solid; one-way (its top edge holds a body from above)" (quote (#f #t))
           (list (tilemap-solid? tm 0 0) (tilemap-one-way? tm 0 0))))
   (tk-tmx tk-path (tk-polygon-tile 0 0 0 "0,0 16,0 8,8"))
   (test "a triangle hanging from the top corners to a point inside: no ceiling slope, a solid tile" '(#f #f #t)
