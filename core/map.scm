@@ -67,7 +67,7 @@
    tilemap-screen-size tilemap-cell-anchor tilemap-screen-point
    tilemap-layers tilemap-layer tilemap-properties
    tilemap-tile-at tilemap-cell-at tilemap-flags-at tilemap-solid? tilemap-one-way? tilemap-solid-grid
-   tilemap-kind tilemap-ladder? tilemap-ladder-top? tilemap-slope tile-property-table
+   tilemap-kind tilemap-ladder? tilemap-ladder-top? tilemap-slope tilemap-ceiling-slope tile-property-table
    ;; map attributes
    tilemap-source tilemap-version tilemap-tiled-version tilemap-class
    tilemap-orientation tilemap-render-order tilemap-infinite?
@@ -108,7 +108,8 @@
    ;; tmx)); games build maps with make-tilemap, list->tilemap and make-layer
    %make-layer make-image make-tile make-tileset make-map-object tileset-tile-table
    tileset-tile-ids gid-mask check-integer
-   ;; for the physics only: the slope heights by cell, or #f (tilemap-slope)
+   ;; for the physics only: the slope heights by cell, or #f (tilemap-slope,
+   ;; tilemap-ceiling-slope)
    tilemap-slopes)
 
 
@@ -307,7 +308,7 @@
     (layer-tree tilemap-layer-tree)     ; every layer, as nested in Tiled
     (kinds tilemap-kinds)               ; #f, or (u8vector grid . vector of kind symbols)
     (ladders tilemap-ladders)           ; #f, or a u8vector: 1 on each ladder cell
-    (slopes tilemap-slopes))            ; #f, or a vector by cell of (left . right) heights
+    (slopes tilemap-slopes))            ; #f, or a vector by cell of (left . right) heights (depths)
 
   (define (info-ref tm key default)
     (let ((p (assq key (tilemap-info tm)))) (if p (cdr p) default)))
@@ -456,7 +457,9 @@
       ("kind" . string)         ; what the cell is, for the game (tilemap-kind)
       ("ladder" . bool)         ; a climbable cell, not solid (docs/physics.org, "Ladders")
       ("slope-left" . int)      ; a slope: its floor's height (px) at the tile's left edge
-      ("slope-right" . int)))   ; ... and at its right edge (both or neither)
+      ("slope-right" . int)     ; ... and at its right edge (both or neither)
+      ("ceiling-left" . int)    ; a ceiling slope: its ceiling's depth (px) below the tile's top, left edge
+      ("ceiling-right" . int))) ; ... and at its right edge (both or neither; not with slope-*)
 
   ;; A name folded for comparison: lower case, without '-', '_' or spaces.
   (define (fold-name name)
@@ -497,53 +500,102 @@
   (define (tileset-origin ts map-source)
     (or (tileset-source ts) map-source "a map made in code"))
 
-  ;; A tile's slope (docs/physics.org, "Slopes"): its floor's heights
-  ;; (left . right) in px above the tile's bottom edge, from the properties
-  ;; slope-left and slope-right (both or neither, each 0 .. tile height),
-  ;; else from a collision polygon drawn in Tiled that has points on both
-  ;; the tile's left edge (x 0) and its right edge (x tile width): the
-  ;; highest point on each edge gives that edge's height. A polygon whose
-  ;; two heights are both the tile's full height is a plain solid tile.
-  ;; #f when the tile is no slope.
+;; A tile's slope (docs/physics.org, "Slopes"): (floor left . right),
+  ;; its floor's heights in px above the tile's bottom edge, or (ceiling
+  ;; left . right), its ceiling's depths in px below the tile's top edge;
+  ;; from the properties slope-left and slope-right, or ceiling-left and
+  ;; ceiling-right (a pair given both or neither, each 0 .. tile height,
+  ;; never both pairs), else from a collision polygon drawn in Tiled that
+  ;; has points on both the tile's left edge (x 0) and its right edge (x
+  ;; tile width): a polygon with both top corners and not both bottom
+  ;; ones, every point on the left or right edge, is a ceiling, whose
+  ;; lowest point on each edge gives that edge's depth (not both 0); any
+  ;; other is a floor, whose highest point on each edge gives that edge's
+  ;; height. A floor polygon whose two heights are both the
+  ;; tile's full height is a plain solid tile. #f when the tile is no
+  ;; slope.
   (define (tile-slope t props tw th where)
-    (let ((l (assoc "slope-left" props)) (r (assoc "slope-right" props)))
-      (define (height name v)
-        (unless (and (exact-integer? v) (<= 0 v th))
-          (error 'load-tilemap (sprintf "~a: property ~s is ~s; a slope height is 0 .. ~a (the tile height)"
-                                        (where) name v th)))
-        v)
-      (cond ((and l r) (cons (height "slope-left" (cdr l)) (height "slope-right" (cdr r))))
-            ((or l r)
-             (error 'load-tilemap (sprintf "~a: property ~s needs ~s beside it (a slope gives both heights)"
-                                           (where) (if l "slope-left" "slope-right")
-                                           (if l "slope-right" "slope-left"))))
+    (define (height name v)
+      (unless (and (exact-integer? v) (<= 0 v th))
+        (error 'load-tilemap (sprintf "~a: property ~s is ~s; a slope ~a is 0 .. ~a (the tile height)"
+                                      (where) name v
+                                      (if (string=? (substring name 0 5) "slope") "height" "depth") th)))
+      v)
+    (define (pair kind left right)
+      (let ((l (assoc left props)) (r (assoc right props)))
+        (cond ((and l r) (cons kind (cons (height left (cdr l)) (height right (cdr r)))))
+              ((or l r)
+               (error 'load-tilemap (sprintf "~a: property ~s needs ~s beside it (a slope gives both edges)"
+                                             (where) (if l left right) (if l right left))))
+              (else #f))))
+    (let ((floor (pair 'floor "slope-left" "slope-right"))
+          (ceiling (pair 'ceiling "ceiling-left" "ceiling-right")))
+      (cond ((and floor ceiling)
+             (error 'load-tilemap (sprintf "~a: properties slope-left/slope-right and ceiling-left/ceiling-right together; a tile is a floor slope or a ceiling slope"
+                                           (where))))
+            ((or floor ceiling))
             (else (let loop ((shapes (tile-shapes t)))
                     (and (pair? shapes)
                          (or (polygon-slope (car shapes) tw th) (loop (cdr shapes)))))))))
 
-  ;; The heights of a collision polygon on the tile's two edges, or #f.
+  ;; The slope of a collision polygon on the tile's two edges, or #f.
   (define (polygon-slope o tw th)
     (and (eq? (object-shape o) 'polygon)
          (let* ((pts (map (lambda (p) (cons (+ (object-x o) (car p)) (+ (object-y o) (cdr p))))
                           (object-points o)))
-                (top-at (lambda (x) (foldl (lambda (best p)
-                                             (if (and (= (car p) x) (or (not best) (< (cdr p) best))) (cdr p) best))
-                                           #f pts)))
-                (yl (top-at 0)) (yr (top-at tw)))
-           (and yl yr (<= 0 yl th) (<= 0 yr th)
-                (let ((l (->exact (- th yl))) (r (->exact (- th yr))))
-                  (and (not (and (= l th) (= r th))) (cons l r)))))))
+                (on-edge (lambda (x pick) (foldl (lambda (best p)
+                                                    (if (and (= (car p) x) (or (not best) (pick (cdr p) best))) (cdr p) best))
+                                                  #f pts)))
+                (corner? (lambda (x y) (any (lambda (p) (and (= (car p) x) (= (cdr p) y))) pts))))
+           (or (and (corner? 0 0) (corner? tw 0) (not (and (corner? 0 th) (corner? tw th)))
+                    (every-on-edge? pts tw)
+                    (let ((dl (on-edge 0 >)) (dr (on-edge tw >)))
+                      (and (<= 0 dl th) (<= 0 dr th) (not (and (= dl 0) (= dr 0)))
+                           (cons 'ceiling (cons (->exact dl) (->exact dr))))))
+               (let ((yl (on-edge 0 <)) (yr (on-edge tw <)))
+                 (and yl yr (<= 0 yl th) (<= 0 yr th)
+                      (let ((l (->exact (- th yl))) (r (->exact (- th yr))))
+                        (and (not (and (= l th) (= r th))) (cons 'floor (cons l r))))))))))
+
+  ;; A slope (kind left . right) as a cell's flip flags turn it (Tiled
+  ;; flips the diagonal first, then horizontally, then vertically): the
+  ;; tile's solid part as a polygon in tile px, transformed, and read back
+  ;; as a floor (both bottom corners, every point on the left or right
+  ;; edge) or a ceiling (both top corners, the same); #f when it is
+  ;; neither (a turned 22.5 degree tile has no straight floor or ceiling
+  ;; from edge to edge). A diagonal flip needs square tiles.
+  (define (flipped-slope slope cell tw th)
+    (let* ((kind (car slope)) (l (cadr slope)) (r (cddr slope))
+           (pts (if (eq? kind 'floor)
+                    (list (cons 0 (- th l)) (cons tw (- th r)) (cons tw th) (cons 0 th))
+                    (list (cons 0 0) (cons tw 0) (cons tw r) (cons 0 l))))
+           (pts (if (cell-flipped-diagonally? cell) (map (lambda (p) (cons (cdr p) (car p))) pts) pts))
+           (pts (if (cell-flipped-horizontally? cell) (map (lambda (p) (cons (- tw (car p)) (cdr p))) pts) pts))
+           (pts (if (cell-flipped-vertically? cell) (map (lambda (p) (cons (car p) (- th (cdr p)))) pts) pts))
+           (has? (lambda (x y) (any (lambda (p) (and (= (car p) x) (= (cdr p) y))) pts)))
+           (edge (lambda (x pick) (foldl (lambda (best p) (if (and (= (car p) x) (or (not best) (pick (cdr p) best))) (cdr p) best))
+                                         #f pts))))
+      (and (or (= tw th) (not (cell-flipped-diagonally? cell)))
+           (every-on-edge? pts tw)
+           (cond ((and (has? 0 th) (has? tw th)) (cons 'floor (cons (- th (edge 0 <)) (- th (edge tw <)))))
+                 ((and (has? 0 0) (has? tw 0)) (cons 'ceiling (cons (edge 0 >) (edge tw >))))
+                 (else #f)))))
+
+  (define (every-on-edge? pts tw)
+    (or (null? pts) (and (or (= 0 (caar pts)) (= tw (caar pts))) (every-on-edge? (cdr pts) tw))))
 
   (define (->exact v) (if (exact? v) v (inexact->exact v)))
 
   ;; What the tilesets' tiles say, checked: a table gid -> #(collides one-way
   ;; kind ladder slope) (each #f when the tile does not set it, kind a
-  ;; symbol, slope (left . right)) for the tiles that set any, plus each
-  ;; gid of `extra-one-way` as one-way (of `extra-ladders` as a ladder, of
-  ;; `extra-slopes` as a slope); #f when there are none. A property of the
+  ;; symbol, slope (floor left . right) or (ceiling left . right)) for the
+  ;; tiles that set any, plus each gid of `extra-one-way` as one-way (of
+  ;; `extra-ladders` as a ladder, of `extra-slopes` as a floor slope, of
+  ;; `extra-ceilings` as a ceiling slope); #f when there are none. A property of the
   ;; table of another type, or a name that looks like one of the table's,
   ;; is an error naming the file, the tileset, the tile and the property.
-  (define (tile-rules tilesets extra-one-way extra-kinds extra-ladders extra-slopes tw th map-source)
+  (define (tile-rules tilesets extra-one-way extra-kinds extra-ladders extra-slopes extra-ceilings
+                      tw th map-source)
     (let ((table (make-hash-table)) (any? #f))
       ;; what the code's lists add to a tile's rule: field i set to v
       (define (rule-set! g i v)
@@ -602,19 +654,24 @@
                   (set! any? #t)
                   (rule-set! (car p) 2 (cdr p)))
                 extra-kinds)
-      (for-each (lambda (p)
-                  (unless (and (list? p) (= (length p) 3) (exact-integer? (car p))
-                               (exact-integer? (cadr p)) (<= 0 (cadr p) th)
-                               (exact-integer? (caddr p)) (<= 0 (caddr p) th))
-                    (error 'make-tilemap
-                           (sprintf "slopes: must be a list of (tile-id left right), heights 0 .. ~a (the tile height)" th)
-                           p))
-                  (set! any? #t)
-                  (rule-set! (car p) 4 (cons (cadr p) (caddr p))))
-                extra-slopes)
+      (define (code-slopes kind key ls)
+        (for-each (lambda (p)
+                    (unless (and (list? p) (= (length p) 3) (exact-integer? (car p))
+                                 (exact-integer? (cadr p)) (<= 0 (cadr p) th)
+                                 (exact-integer? (caddr p)) (<= 0 (caddr p) th))
+                      (error 'make-tilemap
+                             (sprintf "~a must be a list of (tile-id left right), ~a 0 .. ~a (the tile height)"
+                                      key (if (eq? kind 'floor) "heights" "depths") th)
+                             p))
+                    (set! any? #t)
+                    (rule-set! (car p) 4 (cons kind (cons (cadr p) (caddr p)))))
+                  ls))
+      (code-slopes 'floor "slopes:" extra-slopes)
+      (code-slopes 'ceiling "ceiling-slopes:" extra-ceilings)
       (and any? table)))
 
-  ;; The solid grid: 0 empty, 1 solid, 2 one-way, 3 slope. A non-zero gid
+  ;; The solid grid: 0 empty, 1 solid, 2 one-way, 3 slope (slope-grid
+  ;; then makes a cell whose flips leave a ceiling slope 4). A non-zero gid
   ;; of a colliding layer is solid, unless its tile says collides false or
   ;; ladder (then it adds nothing here), is a slope (3) or one-way (2); a
   ;; solid tile of another layer in the same cell overrides either, and a
@@ -711,11 +768,14 @@
                 layers)
                (cons grid kinds))))))
 
-  ;; Each slope cell's heights (left . right), by cell index: the slope
-  ;; of the last colliding layer that has one there, swapped when that
-  ;; cell's tile is flipped horizontally (Tiled's other flips leave it as
-  ;; it is). #f when no cell is a slope.
-  (define (slope-grid width height layers rules grid)
+;; Each slope cell's heights (left . right), by cell index, or #f when
+  ;; no cell is a slope: the slope of the last colliding layer that has
+  ;; one there, turned by that cell's flip flags (flipped-slope), which
+  ;; also decide whether it is a floor slope (grid byte 3, heights above
+  ;; the cell's bottom) or a ceiling slope (byte 4, depths below its top).
+  ;; A flip that leaves no straight floor or ceiling is an error naming
+  ;; the file, the layer, the cell and the tile.
+  (define (slope-grid width height layers rules grid tw th origin-col origin-row tilesets source)
     (let ((n (* width height)))
       (and rules
            (let scan ((i 0))
@@ -729,17 +789,34 @@
                       (let* ((cell (u32vector-ref data i))
                              (rule (hash-table-ref/default rules (cell-gid cell) #f))
                              (slope (and rule (vector-ref rule 4))))
-                        (when (and slope (fx= 3 (u8vector-ref grid i)))
-                          (vector-set! v i (if (cell-flipped-horizontally? cell)
-                                               (cons (cdr slope) (car slope))
-                                               slope))))))))
+                        (when (and slope (fx>= (u8vector-ref grid i) 3))
+                          (let ((turned (flipped-slope slope cell tw th)))
+                            (unless turned
+                              (error 'load-tilemap
+                                     (sprintf "~a: layer ~s, cell (~a, ~a): tile ~a, a ~a slope ~a -> ~a, flipped ~s, has no straight floor or ceiling from edge to edge~a"
+                                              (or source "a map made in code") (layer-name layer)
+                                              (+ origin-col (fxmod i width)) (+ origin-row (fx/ i width))
+                                              (tile-label tilesets (cell-gid cell)) (car slope) (cadr slope) (cddr slope)
+                                              (cell-flags cell)
+                                              (if (and (cell-flipped-diagonally? cell) (not (= tw th)))
+                                                  " (a diagonal flip needs square tiles)"
+                                                  ""))))
+                            (u8vector-set! grid i (if (eq? (car turned) 'floor) 3 4))
+                            (vector-set! v i (cdr turned)))))))))
               layers)
              v))))
+
+  ;; A tile for an error: its tileset and local id, else its gid.
+  (define (tile-label tilesets gid)
+    (let loop ((ts tilesets) (best #f))
+      (cond ((and (pair? ts) (<= (tileset-first-gid (car ts)) gid)) (loop (cdr ts) (car ts)))
+            (best (sprintf "~a of tileset ~s" (- gid (tileset-first-gid best)) (tileset-name best)))
+            (else (sprintf "id ~a" gid)))))
 
   (define (make-tilemap width height tile-width tile-height layers
                         #!key (properties '()) (origin-col 0) (origin-row 0)
                         (info '()) (tilesets '()) (layer-tree layers) (one-way '()) (kinds '())
-                        (ladders '()) (slopes '()))
+                        (ladders '()) (slopes '()) (ceiling-slopes '()))
     (for-each
      (lambda (layer)
        (unless (and (eq? (layer-kind layer) 'tile)
@@ -753,23 +830,26 @@
                  (fixnum? tile-height) (fx> tile-height 0))
       (error 'make-tilemap "tile size must be positive integers" tile-width tile-height))
     (let* ((source (let ((p (assq 'source info))) (and p (cdr p))))
-           (rules (tile-rules tilesets one-way kinds ladders slopes tile-width tile-height source))
+           (rules (tile-rules tilesets one-way kinds ladders slopes ceiling-slopes tile-width tile-height source))
            (climbable (ladder-grid width height layers rules))
            (solid (solid-grid width height layers rules)))
       (mark-ladder-tops! width solid climbable)
       (%make-tilemap width height tile-width tile-height layers properties
                      solid origin-col origin-row
                      info tilesets layer-tree (kind-grid width height layers rules source) climbable
-                     (slope-grid width height layers rules solid))))
+                     (slope-grid width height layers rules solid tile-width tile-height
+                                 origin-col origin-row tilesets source))))
 
   ;; A one-layer map from rows of tile ids: procedural levels, tests, the REPL.
   ;; one-way: the tile ids that are one-way platforms; kinds: an alist
   ;; (tile-id . kind) of the tiles' kinds (as the `kind` tile property);
   ;; ladders: the tile ids that are ladders; slopes: a list (tile-id left
   ;; right) of the slope tiles and their heights (as the slope-left and
-  ;; slope-right tile properties).
+  ;; slope-right tile properties); ceiling-slopes: likewise, the ceiling
+  ;; slope tiles and their depths (as ceiling-left and ceiling-right).
   (define/keywords (list->tilemap rows #!key (tile-width 16) (tile-height 16) (name "tiles")
-                                  (one-way '()) (kinds '()) (ladders '()) (slopes '()))
+                                  (one-way '()) (kinds '()) (ladders '()) (slopes '())
+                                  (ceiling-slopes '()))
     (let* ((height (length rows))
            (width (if (null? rows) 0 (length (car rows))))
            (data (make-u32vector (* width height) 0)))
@@ -788,7 +868,8 @@
           (loop (cdr rows) (+ j 1))))
       (make-tilemap width height tile-width tile-height
                     (list (make-layer name width height data))
-                    one-way: one-way kinds: kinds ladders: ladders slopes: slopes)))
+                    one-way: one-way kinds: kinds ladders: ladders slopes: slopes
+                    ceiling-slopes: ceiling-slopes)))
 
   ;;; ------------------------------------------------------------------
   ;;; Where Tiled draws things, for every orientation (the renderer and the
@@ -936,10 +1017,15 @@
     (let ((i (cell-index 'tilemap-solid? tm col row)))
       (and i (fx= 1 (u8vector-ref (tilemap-solid-grid tm) i)))))
 
-  ;; Whether the cell is a one-way platform (and not solid).
+  ;; Whether the cell is a one-way platform (and not solid): a one-way
+  ;; tile, a ladder's top, or a ceiling slope, whose top edge is solid.
   (define (tilemap-one-way? tm col row)
     (let ((i (cell-index 'tilemap-one-way? tm col row)))
-      (and i (fx= 2 (u8vector-ref (tilemap-solid-grid tm) i)))))
+      (and i (one-way-byte? (u8vector-ref (tilemap-solid-grid tm) i)))))
+
+  ;; The solid grid's bytes whose cell holds a body landing from above and
+  ;; lets one through from below (physics/motion.c's DS_ONE_WAY says the same).
+  (define (one-way-byte? b) (or (fx= b 2) (fx= b 4)))
 
   ;; The kind of the cell (a symbol, from its tile's `kind` property), or
   ;; #f: O(1), a byte of a grid made when the map was.
@@ -959,10 +1045,17 @@
 
   ;; The slope of the cell, (left . right): its floor's heights in px above
   ;; the cell's bottom edge at its left and right edges; #f when the cell
-  ;; is no slope (docs/physics.org, "Slopes").
+  ;; is no floor slope (docs/physics.org, "Slopes").
   (define (tilemap-slope tm col row)
     (let ((i (cell-index 'tilemap-slope tm col row)) (v (tilemap-slopes tm)))
       (and i v (fx= 3 (u8vector-ref (tilemap-solid-grid tm) i)) (vector-ref v i))))
+
+  ;; The ceiling slope of the cell, (left . right): its ceiling's depths in
+  ;; px below the cell's top edge at its left and right edges (its solid
+  ;; part lies above that line); #f when the cell is no ceiling slope.
+  (define (tilemap-ceiling-slope tm col row)
+    (let ((i (cell-index 'tilemap-ceiling-slope tm col row)) (v (tilemap-slopes tm)))
+      (and i v (fx= 4 (u8vector-ref (tilemap-solid-grid tm) i)) (vector-ref v i))))
 
   ;;; ------------------------------------------------------------------
   ;;; Properties

@@ -47,10 +47,16 @@
          (< (num s #:x) (+ x w))
          (<= (abs (- (num s #:y) bottom))
              *entity-ground-contact-tolerance*)
-         ;; a one-way platform holds no one rising through it or
-         ;; dropping through it
+         ;; a one-way platform holds no one rising through it,
+         ;; dropping through it or climbing through it
          (or (not (entity-ref s #:one-way? #f))
-             (and (>= vy 0) (not (entity-ref entity #:drop-through? #f))))))
+             (and (>= vy 0) (not (passes-one-way-entities? entity))))))
+
+  ;; Whether one-way entities let this body through: it has
+  ;; #:drop-through?, or it is climbing a ladder (docs/physics.org,
+  ;; "Ladders"), as one-way tiles do.
+  (define (passes-one-way-entities? e)
+    (or (entity-ref e #:drop-through? #f) (climbing? e)))
 
   ;; From this many solid entities on, ground detection asks a spatial
   ;; hash of their tops (broadphase.scm) instead of walking them all for
@@ -245,12 +251,13 @@
   ;; it, its bottom on the lift's top and its #:vy 0, and is carried on x.
   ;; (Falling 1 px a frame, it would otherwise be left behind by any lift
   ;; faster than that.)
-  ;; A mover with #:drop-through? is not held by a one-way lift: it falls.
+  ;; A mover with #:drop-through?, or climbing, is not held by a one-way
+  ;; lift: it falls (climbs) on.
   (define (ride-down mover fixed dy)
     (let ((top (num fixed #:y))
           (bottom (+ (num mover #:y) (num mover #:height))))
       (if (and (>= (num mover #:vy) 0)
-               (not (and (entity-ref fixed #:one-way? #f) (entity-ref mover #:drop-through? #f)))
+               (not (and (entity-ref fixed #:one-way? #f) (passes-one-way-entities? mover)))
                (<= (- top dy) bottom top)
                (< (num mover #:x) (+ (num fixed #:x) (num fixed #:width)))
                (< (num fixed #:x) (+ (num mover #:x) (num mover #:width))))
@@ -282,7 +289,7 @@
   ;; top is its own #:frame-start, else where it is. The mover's bottom
   ;; is put on the platform's top, #:vy 0, and it is carried like any
   ;; rider; from below and from the side it passes through, and so does
-  ;; a mover with #:drop-through?.
+  ;; a mover with #:drop-through? or one climbing a ladder.
   (define (land-on-one-way mover platform)
     (let* ((vy (num mover #:vy))
            (start (flag platform #:frame-start))
@@ -290,7 +297,7 @@
            (own (flag mover #:frame-start))
            (was (if (pair? own) (cdr own) (- (num mover #:y) vy))))
       (if (and (> vy 0)
-               (not (flag mover #:drop-through?))
+               (not (passes-one-way-entities? mover))
                (<= (+ was (num mover #:height)) top))
           (carry (entity-set* mover #:y (- (num platform #:y) (num mover #:height)) #:vy 0) platform)
           mover)))

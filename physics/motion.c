@@ -55,7 +55,7 @@ static int ds_tile_stop(long v, long pn, long pd, long size, long an, long ad, l
     for (cell = lo; cell <= hi; cell++)
       if (base[cell * cs] &&      /* most cells are empty: one test */
           (base[cell * cs] == 1 ||
-           (one_way && base[cell * cs] == 2 && (line + line_origin) * tile * pd >= start_bottom))) {
+           (one_way && DS_ONE_WAY(base[cell * cs]) && (line + line_origin) * tile * pd >= start_bottom))) {
         long at = line + line_origin;
         *stop = forward ? at * tile - size : (at + 1) * tile;
         return 1;
@@ -106,7 +106,7 @@ static int ds_near_slope(const unsigned char *bytes, long cols, long rows, long 
   long r, c;
   for (r = r0; r <= r1; r++)
     for (c = c0; c <= c1; c++)
-      if (bytes[r * cols + c] == 3) return 1;
+      if (bytes[r * cols + c] >= 3) return 1;   /* a floor (3) or ceiling (4) slope */
   return 0;
 }
 
@@ -222,7 +222,7 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
     int b1 = has_map && b0 != 1 ? ds_cell(bytes, cols, rows, col0, row0, c1, row) : 0;
     /* a one-way tile holds a body whose bottom is at or above its top */
     C_word ground = C_mk_bool(b0 == 1 || b1 == 1 ||
-                              ((b0 == 2 || b1 == 2) && !(flags & DS_DROP) &&
+                              ((DS_ONE_WAY(b0) || DS_ONE_WAY(b1)) && !(flags & DS_DROP) &&
                                y2n + h * y2d <= row * th * y2d));
     if (!((flags & DS_HAS_ON) && on == ground)) { C_set_block_item(out, 5, ground); writes |= DS_WRITE_ON; }
   }

@@ -26,4 +26,9 @@ enum {
   DS_WRITE_AY = 16, DS_WRITE_ON = 32, DS_X_RATIO = 64, DS_Y_RATIO = 128
 };
 
+/* A solid-grid byte whose cell holds a body landing from above and lets
+   one through from below: a one-way tile or a ladder's top (2), a ceiling
+   slope (4), whose top edge is solid (core/map.scm's one-way-byte?). */
+#define DS_ONE_WAY(b) ((b) == 2 || (b) == 4)
+
 #endif

@@ -16,7 +16,7 @@
 ;;; bodies against bodies, (downstroke motion) the motion steps and the
 ;;; motion pass, (downstroke groups) groups, (downstroke touch) contacts
 ;;; per side, (downstroke ladders) climbing ladders, (downstroke slopes)
-;;; slope tiles and the body's foot.
+;;; slope tiles, the body's foot and its head.
 
 (module (downstroke physics) ()
   ;; imported too, not only re-exported, so that loading this module loads
@@ -33,6 +33,6 @@
                     column-grid row-grid pass-map one-way-map?)
             (except (downstroke escape) escape-place)
             (except (downstroke tile-collisions)
-                    swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing? slope-cut-of)
+                    swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing? slope-cut-of ceiling-cut-of)
             (downstroke contacts) (downstroke motion) (downstroke groups) (downstroke touch)
-            (downstroke ladders) (only (downstroke slopes) slope-surface)))
+            (downstroke ladders) (only (downstroke slopes) slope-surface ceiling-surface)))

@@ -9,7 +9,7 @@
   (resolve-tile-collisions-x resolve-tile-collisions-y discrete-safe-speed tunnel-risk?
    ;; for sibling modules only: the rules behind the steps, for the motion
    ;; pass and ground detection
-   swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing? slope-cut-of)
+   swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing? slope-cut-of ceiling-cut-of)
 
   (import scheme (chicken base) (chicken format) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke map)
@@ -106,12 +106,12 @@
   ;; bottom, 0 elsewhere). climbers?: whether the body may be climbing
   ;; (the motion pass asks only in a scene with a climber).
   (define (resolve-tiles entity swept start pos-key size-key vel-key across-key across-size-key
-                         tile tile-across grid #!optional (cut 0) (climbers? #t))
+                         tile tile-across grid #!optional (cut 0) (climbers? #t) (top-cut 0))
     (let ((v (num entity vel-key)))
       (if (zero? v)
           entity
           (let ((stop (tile-box-stop entity v swept start pos-key size-key across-key across-size-key
-                                     tile tile-across grid cut climbers?)))
+                                     tile tile-across grid cut climbers? top-cut)))
             (if stop
                 (entity-set* entity pos-key stop vel-key (rebound entity v))
                 entity)))))
@@ -121,15 +121,19 @@
     (or (entity-ref entity #:drop-through? #f)
         (and climbers? (climbing? entity))))
 
+  ;; top-cut: how much the box is shortened at the top near a ceiling
+  ;; slope (0 elsewhere). On y, `start` is where the body's top started;
+  ;; the answer is the body's y: a stop going down puts the whole box on
+  ;; the tile, one going up the whole box under it.
   (define (tile-box-stop entity v swept start pos-key size-key across-key across-size-key
-                         tile tile-across grid cut climbers?)
+                         tile tile-across grid cut climbers? #!optional (top-cut 0))
     (let ((size (num entity size-key)) (across-size (num entity across-size-key)))
       (if (eq? pos-key #:y)
-          (tile-stop v (num entity pos-key) (- size cut) (num entity across-key) across-size
-                     swept start
+          (tile-stop v (+ (num entity pos-key) top-cut) (- size cut top-cut) (num entity across-key) across-size
+                     swept (+ start top-cut)
                      (and (> v 0) (not (passes-one-way? entity climbers?)))
                      tile tile-across grid size)
-          (tile-stop v (num entity pos-key) size (num entity across-key) (- across-size cut)
+          (tile-stop v (num entity pos-key) size (+ (num entity across-key) top-cut) (- across-size cut top-cut)
                      swept start #f tile tile-across grid))))
 
   ;; The velocity a body leaves a tile with on the axis it hit it: 0, or
@@ -157,13 +161,15 @@
   ;; as it was; the answer is the entity and the new start on `axis`
   ;; (#:x or #:y), which that axis's sweep starts from, as it is, not
   ;; recomputed from the new position (flonums would round it).
-  (define (leave-solids entity tm sx sy mx my axis #!optional (cut 0))
+  (define (leave-solids entity tm sx sy mx my axis #!optional (cut 0) (top-cut 0))
     (if (or (and (zero? (num entity #:vx)) (zero? (num entity #:vy)))
             (entity-ref entity #:tween #f)
             (and (entity-skips-pipeline? entity 'velocity-x)
                  (entity-skips-pipeline? entity 'velocity-y)))
         (values entity (if (eq? axis #:x) sx sy))
-        (let-values (((nx ny) (escape-place tm sx sy (num entity #:width) (- (num entity #:height) cut))))
+        (let-values (((nx ny) (let-values (((nx ny) (escape-place tm sx (+ sy top-cut) (num entity #:width)
+                                                                  (- (num entity #:height) cut top-cut))))
+                                (values nx (if (eqv? top-cut 0) ny (- ny top-cut))))))
           (values (if (and (eqv? nx sx) (eqv? ny sy))
                       entity
                       (entity-set* entity
@@ -196,19 +202,63 @@
               0))
         0))
 
+  ;; Near a ceiling slope (docs/physics.org, "Ceiling slopes"): how much
+  ;; of the box's top the tile passes leave out, when a ceiling slope cell
+  ;; lies in the columns the head crossed on x this frame (x - mx + w/2 to
+  ;; x + w/2), in the rows within that much of its path on y (y - my to
+  ;; y); #f elsewhere and on maps without ceiling slopes. It is
+  ;; w/2 + |mx| + max(-my, 0), but never more than h - 1 - cut (cut: the
+  ;; bottom's, slope-cut-of), so that a pixel row of the box is left; it
+  ;; may be 0, and the head's rules apply all the same.
+  (define (ceiling-cut-of tm entity mx my cut)
+    (and (ceiling-map? tm)
+         (let* ((x (num entity #:x)) (w (num entity #:width)) (h (num entity #:height))
+                (y (num entity #:y))
+                (d (max 0 (min (- h 1 cut) (+ (/ w 2) (abs mx) (max (- my) 0)))))
+                (hx (+ x (/ w 2))))
+           (and (head-near-ceiling? tm (- hx mx) hx (- (min y (- y my)) d) (+ (max y (- y my)) d))
+                d))))
+
   ;; The x pass: a swept body first leaves solid tiles, from where its
-  ;; frame started, (x - vx, y).
+  ;; frame started, (x - vx, y). Near a ceiling slope the head is swept
+  ;; too (head-wall): of the box's stop and the head's, the first met.
   (define (stop-at-tiles-x scene entity)
     (let* ((tm (scene-tilemap scene))
            (swept (swept? scene entity))
            (mx (velocity-moved entity #:vx 'velocity-x))
            (sx (- (num entity #:x) mx))
-           (cut (slope-cut-of tm entity mx 0)))
+           (cut (slope-cut-of tm entity mx 0))
+           (head? (ceiling-cut-of tm entity mx 0 cut))
+           (top-cut (or head? 0)))
       (let-values (((entity sx) (if swept
-                                    (leave-solids entity tm sx (num entity #:y) mx 0 #:x cut)
+                                    (leave-solids entity tm sx (num entity #:y) mx 0 #:x cut top-cut)
                                     (values entity sx))))
-        (resolve-tiles entity swept sx #:x #:width #:vx #:y #:height
-                       (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm) cut #f))))
+        (if head?
+            (stop-head-x entity tm swept sx cut top-cut)
+            (resolve-tiles entity swept sx #:x #:width #:vx #:y #:height
+                           (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm) cut #f)))))
+
+  ;; The x pass near a ceiling slope: the box without its lowest `cut`
+  ;; and its top `top-cut` px meets solid tiles; the head, x + w/2 at
+  ;; height y, is swept from where this frame's x motion started (sx)
+  ;; and stops where it would pass into a ceiling slope's solid part or a
+  ;; solid cell of its row; the nearer stop holds.
+  (define (stop-head-x entity tm swept sx cut top-cut)
+    (let ((v (num entity #:vx)))
+      (if (zero? v)
+          entity
+          (let* ((w (num entity #:width)) (x (num entity #:x))
+                 (box (tile-box-stop entity v swept sx #:x #:width #:y #:height
+                                     (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm)
+                                     cut #f top-cut))
+                 (head (and (not (= sx x))
+                            (let ((p (head-wall tm (num entity #:y) (+ sx (/ w 2)) (+ x (/ w 2)))))
+                              (and p (- p (/ w 2))))))
+                 (stop (cond ((and box head) (if (> v 0) (min box head) (max box head)))
+                             (else (or box head)))))
+            (if stop
+                (entity-set* entity #:x stop #:vx (rebound entity v))
+                entity)))))
 
   ;; The y pass. A swept body that skips the x tile pass leaves solid
   ;; tiles here, from where its frame started on both axes, (x - vx,
@@ -219,15 +269,17 @@
            (my (velocity-moved entity #:vy 'velocity-y))
            (sy (- (num entity #:y) my))
            (mx (velocity-moved entity #:vx 'velocity-x))
-           (cut (slope-cut-of tm entity mx my)))
+           (cut (slope-cut-of tm entity mx my))
+           (head? (ceiling-cut-of tm entity mx my cut))
+           (top-cut (or head? 0)))
       (let-values (((entity sy)
                     (if (and swept (entity-skips-pipeline? entity 'tile-collisions-x))
-                        (leave-solids entity tm (- (num entity #:x) mx) sy mx my #:y cut)
+                        (leave-solids entity tm (- (num entity #:x) mx) sy mx my #:y cut top-cut)
                         (values entity sy))))
-        (if (eqv? cut 0)
+        (if (and (eqv? cut 0) (not head?))
             (resolve-tiles entity swept sy #:y #:height #:vy #:x #:width
                            (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm) 0 climbers?)
-            (land-near-slope entity tm swept sy mx cut climbers?)))))
+            (land-near-slope entity tm swept sy mx cut climbers? head? top-cut)))))
 
   ;; The y pass near a slope (docs/physics.org, "Slopes"). The box without
   ;; its lowest `cut` px (slope-cut-of) meets solid and one-way tiles as any box does (a
@@ -238,14 +290,21 @@
   ;; y + h, and by |mx| more for a body that was on the ground (so that
   ;; it follows a floor going down): the first floor in that span stops
   ;; it there. Of the two stops, the higher one holds.
-  (define (land-near-slope entity tm swept sy mx cut climbers?)
+  ;; Near a ceiling slope (head?) the box is also without its top
+  ;; `top-cut` px, and a body going up (vy < 0) has its head, x + w/2,
+  ;; swept from where the frame's y motion started, sy, up to y: the
+  ;; first ceiling in that span stops it there (head-ceiling). Of the
+  ;; box's stop and the head's, the lower one holds.
+  (define (land-near-slope entity tm swept sy mx cut climbers? #!optional head? (top-cut 0))
     (let* ((v (num entity #:vy))
            (h (num entity #:height))
            (box (and (not (zero? v))
                      (tile-box-stop entity v swept sy #:y #:height #:x #:width
                                     (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm)
-                                    cut climbers?)))
-           (foot (and (> v 0)
+                                    cut climbers? top-cut)))
+           (head (and head? (< v 0)
+                      (head-ceiling tm (+ (num entity #:x) (/ (num entity #:width) 2)) (num entity #:y) sy)))
+           (foot (and (> v 0) (not (eqv? cut 0))
                       (let* ((b (+ (num entity #:y) h))
                              (from (+ sy h))
                              (level (foot-ground tm (+ (num entity #:x) (/ (num entity #:width) 2))
@@ -253,10 +312,21 @@
                                                  (if (entity-ref entity #:on-ground? #f) (+ b (abs mx)) b)
                                                  from (passes-one-way? entity climbers?))))
                         (and level (- level h)))))
-           (stop (cond ((and box foot) (min box foot)) (else (or box foot)))))
-      (if stop
-          (entity-set* entity #:y stop #:vy (rebound entity v))
-          entity)))
+           (stop (cond ((and box foot) (min box foot))
+                       ((and box head) (max box head))
+                       (else (or box foot head)))))
+      (cond ((and head? stop (> v 0) (< stop (num entity #:y)) (not (zero? mx))
+                  (let ((ceiling (head-ceiling tm (+ (num entity #:x) (/ (num entity #:width) 2))
+                                               stop (num entity #:y))))
+                    (and ceiling (> ceiling stop))))
+             ;; lifted by the floor into a ceiling above its head: the body
+             ;; does not fit there, and goes back to where this frame's x
+             ;; motion started, stopped on x as by a wall
+             (land-near-slope (entity-set* entity #:x (- (num entity #:x) mx)
+                                           #:vx (rebound entity (num entity #:vx)))
+                              tm swept sy 0 cut climbers? head? top-cut))
+            (stop (entity-set* entity #:y stop #:vy (rebound entity v)))
+            (else entity))))
 
   (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
     guard: (scene-tilemap scene)

@@ -107,7 +107,7 @@
                           (and (not (fx= line to)) (next-line (fx+ line step))))
                          ((let ((b (u8vector-ref bytes (fx+ base (fx* cell cell-stride)))))
                             (or (fx= b 1)
-                                (and (fx= b 2) one-way-top
+                                (and (or (fx= b 2) (fx= b 4)) one-way-top
                                      (>= (* (+ line (grid-line-origin g)) tile) one-way-top))))
                           (+ line (grid-line-origin g)))
                          (else (next-cell (fx+ cell 1)))))))))))
@@ -141,7 +141,7 @@
 
   (define (has-one-way? bytes)
     (let loop ((i (fx- (u8vector-length bytes) 1)))
-      (and (fx>= i 0) (or (fx= 2 (u8vector-ref bytes i)) (loop (fx- i 1))))))
+      (and (fx>= i 0) (let ((b (u8vector-ref bytes i))) (or (fx= b 2) (fx= b 4) (loop (fx- i 1)))))))
 
   (define (column-grid tm) (vector-ref (grids tm) 0))
   (define (row-grid tm) (vector-ref (grids tm) 1))

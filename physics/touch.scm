@@ -14,7 +14,8 @@
   (import scheme (chicken base) (chicken fixnum) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke map)
           (downstroke body) (downstroke tile-grid)
-          (only (downstroke tile-collisions) slope-cut-of))
+          (only (downstroke tile-collisions) slope-cut-of ceiling-cut-of)
+          (only (downstroke slopes) slope-map? ceiling-map? foot-slope-cell head-ceiling-cell))
 
   (foreign-declare "#include \"physics/body.h\"")
 
@@ -27,25 +28,32 @@
       (and (integer? q) (->integer q))))
 
   ;; What a touched tile is: its kind, else solid, ladder (a ladder's
-  ;; one-way top) or one-way.
+  ;; one-way top), slope or one-way.
   (define (tile-name tm col row)
     (or (tilemap-kind tm col row)
         (cond ((tilemap-solid? tm col row) 'solid)
               ((tilemap-ladder? tm col row) 'ladder)
-              (else 'one-way))))
+              ((tilemap-ceiling-slope tm col row) 'slope)
+              ((tilemap-one-way? tm col row) 'one-way)
+              (else 'slope))))
 
   ;; The tiles of line `line` across cells lo..hi that hold a body's side:
-  ;; solid ones, and one-way ones when one-way? (a floor).
-  (define (touched-tiles tm line lo hi row-line? one-way?)
-    (let loop ((c hi) (out '()))
+  ;; solid ones, and one-way ones when one-way? (a floor). `slope`: the
+  ;; slope cell (col . row) the foot (head) is on, or #f; it is named in
+  ;; its column's place, before that column's cell on the line.
+  (define (touched-tiles tm line lo hi row-line? one-way? #!optional slope)
+    (let loop ((c hi) (out '()) (slope slope))
       (if (< c lo)
-          (dedupe out)
-          (let* ((col (if row-line? c line)) (row (if row-line? line c)))
+          (dedupe (if slope (cons (tile-name tm (car slope) (cdr slope)) out) out))
+          (let* ((col (if row-line? c line)) (row (if row-line? line c))
+                 (out (if (or (tilemap-solid? tm col row)
+                              (and one-way? (tilemap-one-way? tm col row)))
+                          (cons (tile-name tm col row) out)
+                          out))
+                 (here? (and slope (= (car slope) c))))
             (loop (- c 1)
-                  (if (or (tilemap-solid? tm col row)
-                          (and one-way? (tilemap-one-way? tm col row)))
-                      (cons (tile-name tm col row) out)
-                      out))))))
+                  (if here? (cons (tile-name tm (car slope) (cdr slope)) out) out)
+                  (and (not here?) slope))))))
 
   (define (dedupe ls)
     (let loop ((ls ls) (out '()))
@@ -58,10 +66,18 @@
   (define (side-tiles tm side x y w h drop?)
     (let ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)))
       (case side
-        ((floor) (let ((r (on-line (+ y h) th)))
-                   (if r (touched-tiles tm r (span-first x tw) (span-last x w tw) #t (not drop?)) '())))
-        ((ceiling) (let ((r (on-line y th)))
-                     (if r (touched-tiles tm (- r 1) (span-first x tw) (span-last x w tw) #t #f) '())))
+        ;; a foot exactly on a slope's line touches that slope cell
+        ((floor) (let ((r (on-line (+ y h) th))
+                       (slope (and (slope-map? tm) (foot-slope-cell tm x y w h))))
+                   (cond (r (touched-tiles tm r (span-first x tw) (span-last x w tw) #t (not drop?) slope))
+                         (slope (list (tile-name tm (car slope) (cdr slope))))
+                         (else '()))))
+        ;; a head exactly on a ceiling slope's line touches that cell
+        ((ceiling) (let ((r (on-line y th))
+                         (slope (and (ceiling-map? tm) (head-ceiling-cell tm x y w))))
+                     (cond (r (touched-tiles tm (- r 1) (span-first x tw) (span-last x w tw) #t #f slope))
+                           (slope (list (tile-name tm (car slope) (cdr slope))))
+                           (else '()))))
         ((left) (let ((c (on-line x tw)))
                   (if c (touched-tiles tm (- c 1) (span-first y th) (span-last y h th) #f #f) '())))
         (else (let ((c (on-line (+ x w) tw)))
@@ -94,14 +110,20 @@
            (drop? (entity-ref entity #:drop-through? #f))
            ;; near a slope the sides are the box the tile passes test, the
            ;; body's without its lowest px (docs/physics.org, "Slopes"): the
-           ;; flat tile at a slope's top is not a wall to a body on the slope
-           (side-h (if tm (- h (slope-cut-of tm entity 0 0)) h))
+           ;; flat tile at a slope's top is not a wall to a body on the slope;
+           ;; near a ceiling slope, without its top px too
+           (cut (if tm (slope-cut-of tm entity 0 0) 0))
+           (top-cut (or (and tm (ceiling-cut-of tm entity 0 0 cut)) 0))
+           (side-y (+ y top-cut))
+           (side-h (- h cut top-cut))
            (before (entity-ref entity #:contacts '()))
            (now (let loop ((ss sides) (out '()))
                   (if (null? ss)
                       (reverse out)
                       (let* ((side (car ss))
-                             (tiles (if tm (side-tiles tm side x y w (if (memq side '(left right)) side-h h) drop?) '()))
+                             (tiles (cond ((not tm) '())
+                                          ((memq side '(left right)) (side-tiles tm side x side-y w side-h drop?))
+                                          (else (side-tiles tm side x y w h drop?))))
                              (bodies (let walk ((es (scene-solid-entities scene)) (acc '()))
                                        (cond ((null? es) (reverse acc))
                                              ((and (not (eq? (car es) entity))

@@ -128,6 +128,45 @@
         '((59 50 0 #t #f) (62 51 1 #f #f))
         (climber 50 50 0 #:climbing? #t #:vx 3) 4 '(3 4)))
 
+;; One-way entities (lifts with #:one-way?) let a climbing body through,
+;; as one-way tiles do: they neither stop it, carry it nor hold it up; a
+;; body that is not climbing meets them again.
+(define (lift x y . more)
+  (apply ld-ent #:type 'lift #:x x #:y y #:width 32 #:height 8 #:solid? #t #:immovable? #t #:one-way? #t more))
+
+;; (x y vy climbing? on-ground?) of the first entity after the frames
+;; numbered in `at`, by both pipelines in both modes.
+(define (both-with name expected es n at)
+  (define (run pipeline mode)
+    (let loop ((s (make-scene tilemap: ld-map entities: es collision-mode: mode)) (k 1) (out '()))
+      (if (> k n)
+          (reverse out)
+          (let* ((s (pipeline s 16)) (e (car (scene-entities s))))
+            (loop s (+ k 1)
+                  (if (memv k at)
+                      (cons (map (lambda (key) (entity-ref e key #f)) '(#:x #:y #:vy #:climbing? #:on-ground?)) out)
+                      out))))))
+  (for-each (lambda (mode)
+              (test (sprintf "~a (engine, ~a)" name mode) expected (run engine-pipeline mode))
+              (test (sprintf "~a (readable steps, ~a)" name mode) expected (run contract-pipeline mode)))
+            '(swept discrete)))
+
+(test-group "climbing through one-way entities"
+  (both-with "down through a one-way lift (top y 64): not stopped, not held up, on to the floor"
+             '((50 48 2 #t #f) (50 50 2 #t #f) (50 56 2 #t #f) (50 80 2 #t #t))
+             (list (climber 50 16 1 #:solid? #t) (lift 40 64)) 32 '(16 17 20 32))
+  (both-with "up through it from the floor"
+             '((50 62 -2 #t #f) (50 48 -2 #t #f))
+             (list (climber 50 80 -1 #:solid? #t) (lift 40 64)) 16 '(9 16))
+  (both-with "a one-way lift going down faster than the climber does not take it along"
+             '((98 18 2 #t #f) (98 24 2 #t #f))
+             (list (climber 98 16 1 #:solid? #t)
+                   (lift 88 33 #:vy 3 #:skip-pipelines '(tile-collisions-x tile-collisions-y)))
+             4 '(1 4))
+  (both-with "past a hanging ladder's end it lets go, falls and lands on the lift below (top y 88)"
+             '((98 64 2 #t #f) (98 65 1 #f #f) (98 72 0 #f #t))
+             (list (climber 98 16 1 #:solid? #t) (lift 88 48) (lift 88 88)) 30 '(24 25 30)))
+
 (test-group "contacts see the ladder's top"
   (test "a body standing on it touches, with its floor, the tile ladder" '(ladder)
         (let* ((s (make-scene tilemap: ld-map

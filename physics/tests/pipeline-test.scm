@@ -33,8 +33,9 @@
       (else (+ n (/ (pl-rand 1000) 1000.0))))))
 
 ;; Half the maps have slope tiles (3 to 6: 45 and 22.5 degrees, both
-;; ways; docs/physics.org, "Slopes"), which the fast path hands to the
-;; readable steps.
+;; ways; docs/physics.org, "Slopes") and ceiling slopes (8 to 11, and
+;; floor slopes flipped vertically; "Ceiling slopes"), which the fast
+;; path hands to the readable steps.
 (define (pl-map)
   (let ((slopes? (pl-chance 50)))
     (list->tilemap
@@ -45,11 +46,13 @@
                    (if (= i 12)
                        '()
                        (cons (cond ((or (= j 11) (pl-chance 15)) 1) ((pl-chance 10) 2) ((pl-chance 12) 7)
-                                   ((and slopes? (pl-chance 12)) (pl-pick 3 4 5 6))
+                                   ((and slopes? (pl-chance 12))
+                                    (pl-pick 3 4 5 6 8 9 10 11 (+ 3 #x40000000) (+ 6 #x40000000)))
                                    (else 0))
                              (cols (+ i 1)))))
                  (rows (+ j 1)))))
-     one-way: '(2) ladders: '(7) slopes: '((3 0 16) (4 16 0) (5 0 8) (6 8 16)))))
+     one-way: '(2) ladders: '(7) slopes: '((3 0 16) (4 16 0) (5 0 8) (6 8 16))
+     ceiling-slopes: '((8 0 16) (9 16 0) (10 0 8) (11 8 16)))))
 
 ;; A random entity: every key appears only sometimes, in a random order.
 (define (pl-entity k)
@@ -182,8 +185,9 @@
 ;; several tile sizes, with their origin anywhere, and bodies anywhere
 ;; (far outside the map too, and around the path's +-2^40 limit, where
 ;; they go back to generic arithmetic).
-;; Half of them have slope tiles (3 to 6), which the kernel leaves to the
-;; readable steps for a body near one (physics/motion.c, ds_near_slope).
+;; Half of them have slope tiles (3 to 6) and ceiling slopes (8 to 11),
+;; which the kernel leaves to the readable steps for a body near one
+;; (physics/motion.c, ds_near_slope).
 (define (pl-origin-map)
   (let* ((w (+ 1 (pl-rand 14))) (h (+ 1 (pl-rand 14)))
          (density (pl-pick 5 30 60 80))
@@ -191,12 +195,14 @@
          (data (make-u32vector (* w h) 0)))
     (do ((i 0 (+ i 1))) ((= i (* w h)))
       (when (pl-chance density)
-        (u32vector-set! data i (if (and slopes? (pl-chance 30)) (pl-pick 3 4 5 6) (pl-pick 1 1 1 2 7)))))
+        (u32vector-set! data i (if (and slopes? (pl-chance 30)) (pl-pick 3 4 5 6 8 9 10 11) (pl-pick 1 1 1 2 7)))))
     (let ((th (pl-pick 16 8 12 16 1)))
       (make-tilemap w h (pl-pick 16 8 10 16 1) th
                     (list (make-layer "solid" w h data)) one-way: '(2) ladders: '(7)
                     slopes: (list (list 3 0 th) (list 4 th 0) (list 5 0 (quotient th 2))
                                   (list 6 (quotient th 2) th))
+                    ceiling-slopes: (list (list 8 0 th) (list 9 th 0) (list 10 0 (quotient th 2))
+                                          (list 11 (quotient th 2) th))
                     origin-col: (- (pl-rand 12) 6) origin-row: (- (pl-rand 12) 6)))))
 
 (define (pl-fixnum range)

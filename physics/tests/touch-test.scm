@@ -58,6 +58,45 @@
                                                                              #:gravity? #t)))
                                          2 engine-pipeline)))))
 
+;; A foot exactly on a slope's line touches that slope cell with its
+;; floor (docs/physics.org, "Contacts" and "Slopes"). 16 px tiles: the
+;; floor in row 3 (y 48), a 45 degree slope (tile 3, 0 -> 16) in column
+;; 2, a flat top in row 2 (y 32) from column 3.
+(define (tc-slope-walk kinds x vx n pipeline mode)
+  (let ((tm (list->tilemap '((0 0 0 0 0 0) (0 0 0 0 0 0) (0 0 3 1 1 1) (1 1 1 1 1 1))
+                           slopes: '((3 0 16)) kinds: kinds)))
+    (let loop ((s (make-scene tilemap: tm collision-mode: mode
+                              entities: (list (tc-ent #:type 'w #:x x #:y (if (> vx 0) 32 16) #:width 16 #:height 16
+                                                      #:vx vx #:gravity? #t #:contacts? #t))))
+               (k 0) (out '()))
+      (if (= k n)
+          (reverse out)
+          (let* ((s (pipeline s 16)) (e (car (scene-entities s))))
+            (loop (scene-map-entities s (lambda (s e) (entity-set e #:vx vx))) (+ k 1)
+                  (cons (list (entity-ref e #:x) (entity-ref e #:y)
+                              (entity-touch-frames e 'floor) (entity-touch-tiles e 'floor))
+                        out)))))))
+
+(test-group "contacts: a foot on a slope"
+  (for-each
+   (lambda (mode)
+     (for-each
+      (lambda (pipeline name)
+        (test (sprintf "up the slope (~a, ~a): the floor never lets go, the slope named where the foot is on it" name mode)
+              '((20 32 5 (solid)) (24 32 6 (solid slope)) (28 28 7 (slope)) (32 24 8 (slope))
+                (36 20 9 (slope)) (40 16 10 (solid)) (44 16 11 (solid)))
+              (list-tail (tc-slope-walk '() 0 4 11 pipeline mode) 4))
+        (test (sprintf "down it again (~a, ~a), the slope's kind when it has one" name mode)
+              '((40 16 1 (solid)) (36 20 2 (ramp)) (32 24 3 (ramp)) (28 28 4 (ramp)) (24 32 5 (solid ramp))
+                (20 32 6 (solid)))
+              (tc-slope-walk '((3 . ramp)) 44 -4 6 pipeline mode)))
+      (list engine-pipeline contract-pipeline) '("engine" "readable steps")))
+   '(swept discrete))
+  (test "a foot 1 px above the line touches nothing" '()
+        (let* ((tm (list->tilemap '((0 0 0) (0 3 0)) slopes: '((3 0 16))))
+               (b (tc-ent #:x 16 #:y 7 #:width 16 #:height 16 #:contacts? #t)))
+          (entity-ref (detect-contacts (make-scene tilemap: tm entities: (list b)) b 16) #:contacts))))
+
 (test-group "contacts: entities"
   (define (lift) (tc-ent #:type 'platform #:id 'lift #:x 0 #:y 100 #:width 48 #:height 8
                          #:solid? #t #:immovable? #t #:vx 1))

@@ -69,7 +69,7 @@
           (tilemap-kind (list->tilemap '((1 1))) 0 0)))
   (test "the table names every property Downstroke reads, with its type"
         '(("collides" . bool) ("one-way" . bool) ("kind" . string) ("ladder" . bool)
-          ("slope-left" . int) ("slope-right" . int))
+          ("slope-left" . int) ("slope-right" . int) ("ceiling-left" . int) ("ceiling-right" . int))
         tile-property-table))
 
 (test-group "tile properties: ladder, on the tile or its layer"
@@ -152,6 +152,74 @@
                        "2,0,0,0,0,0,0,0")
                (let ((tm (load-tilemap tk-path))) (list (tilemap-slope tm 0 0) (tilemap-solid? tm 0 0))))))
 
+;; docs/physics.org, "Ceiling slopes": depths from two int properties,
+;; from a polygon with both top corners, or a floor slope flipped
+;; vertically.
+(test-group "ceiling slope tiles: properties, collision polygons, vertical flips"
+  (tk-tmx tk-path (string-append (tk-tile 0 '("ceiling-left" "int" "0") '("ceiling-right" "int" "16"))
+                                 (tk-tile 1 '("slope-left" "int" "0") '("slope-right" "int" "8"))
+                                 ;; the top-right triangle: (0,0) (16,0) (16,16)
+                                 (tk-polygon-tile 2 0 0 "0,0 16,0 16,16")
+                                 ;; a 22.5 degree ceiling, drawn from (0, 0): depths 8 and 0
+                                 (tk-polygon-tile 3 0 0 "0,0 16,0 0,8"))
+          ;; row 1: tile 2 (a floor slope 0 8) flipped vertically, then
+          ;; flipped both ways; tile 1 (a ceiling 0 16) flipped vertically
+          (sprintf "0,0,0,0,~a,~a,~a,0" (+ 2 #x40000000) (+ 2 #xC0000000) (+ 1 #x40000000)))
+  (let ((tm (load-tilemap tk-path)))
+    (test "properties: (left . right) depths; no floor slope there" '((0 . 16) #f)
+          (list (tilemap-ceiling-slope tm 0 0) (tilemap-slope tm 0 0)))
+    (test "a polygon with both top corners: the lowest point on each edge" '((0 . 16) (8 . 0))
+          (list (tilemap-ceiling-slope tm 2 0) (tilemap-ceiling-slope tm 3 0)))
+    (test "a floor slope 0 8 flipped vertically: a ceiling 0 8; flipped both ways: 8 0" '((0 . 8) (8 . 0))
+          (list (tilemap-ceiling-slope tm 0 1) (tilemap-ceiling-slope tm 1 1)))
+    (test "a ceiling slope flipped vertically: a floor slope with its depths as heights" '((0 . 16) #f)
+          (list (tilemap-slope tm 2 1) (tilemap-ceiling-slope tm 2 1)))
+    (test "not solid; one-way (its top edge holds a body from above)" (quote (#f #t))
+          (list (tilemap-solid? tm 0 0) (tilemap-one-way? tm 0 0))))
+  (tk-tmx tk-path (tk-polygon-tile 0 0 0 "0,0 16,0 8,8"))
+  (test "a triangle hanging from the top corners to a point inside: no ceiling slope, a solid tile" '(#f #f #t)
+        (let ((tm (load-tilemap tk-path)))
+          (list (tilemap-ceiling-slope tm 0 0) (tilemap-slope tm 0 0) (tilemap-solid? tm 0 0))))
+  (test "list->tilemap's ceiling-slopes:, a vertical flip of a slopes: tile" '((0 . 8) (8 . 0) (0 . 8) #t)
+        (let ((tm (list->tilemap (list (list 5 (+ 5 #x80000000) (+ 6 #x40000000) 1))
+                                 ceiling-slopes: '((5 0 8)) slopes: '((6 0 8)))))
+          (list (tilemap-ceiling-slope tm 0 0) (tilemap-ceiling-slope tm 1 0) (tilemap-ceiling-slope tm 2 0)
+                (tilemap-solid? tm 3 0)))))
+
+;; docs/physics.org, "Flipped and turned slopes": Tiled's diagonal flip
+;; (its 90 degree turns) turns a slope's solid shape; a 45 degree
+;; triangle turned is again a floor or a ceiling, a 22.5 degree one is
+;; not, and the map does not load.
+(test-group "slopes turned by Tiled's diagonal flip"
+  (define d #x20000000) (define h #x80000000) (define v #x40000000)
+  (tk-tmx tk-path (string-append (tk-tile 0 '("slope-left" "int" "0") '("slope-right" "int" "16"))
+                                 (tk-tile 1 '("slope-left" "int" "0") '("slope-right" "int" "8"))
+                                 (tk-tile 2 '("ceiling-left" "int" "16") '("ceiling-right" "int" "0")))
+          ;; layer "over", row 1: tile 0 (gid 1) flipped diagonally, turned
+          ;; 90 degrees clockwise (diagonal + horizontal), anticlockwise
+          ;; (diagonal + vertical), and tile 2 (gid 3) flipped diagonally
+          (sprintf "0,0,0,0,~a,~a,~a,~a" (+ 1 d) (+ 1 d h) (+ 1 d v) (+ 3 d)))
+  (let ((tm (load-tilemap tk-path)))
+    (test "the 45 degree floor 0 16 transposed is itself; turned clockwise 16 0; anticlockwise a ceiling 0 16"
+          '((0 . 16) (16 . 0) #f (0 . 16))
+          (list (tilemap-slope tm 0 1) (tilemap-slope tm 1 1) (tilemap-slope tm 2 1) (tilemap-ceiling-slope tm 2 1)))
+    (test "the ceiling 16 0 (the top-left triangle) transposed is itself" '(16 . 0)
+          (tilemap-ceiling-slope tm 3 1)))
+  (test "list->tilemap: diagonal + both flips of the floor 0 16 is the ceiling 16 0" '(16 . 0)
+        (tilemap-ceiling-slope (list->tilemap (list (list (+ 5 d h v))) slopes: '((5 0 16))) 0 0))
+  (tk-tmx tk-path (tk-tile 1 '("slope-left" "int" "0") '("slope-right" "int" "8"))
+          (sprintf "0,0,0,0,0,~a,0,0" (+ 2 d h)))
+  (test-assert "a 22.5 degree slope turned: the error names the file, the layer, the cell and the tile"
+               (let ((msg (tk-load-error tk-path)))
+                 (and msg
+                      (substring-index tk-path msg) (substring-index "\"over\"" msg)
+                      (substring-index "(1, 1)" msg) (substring-index "tile 1 of tileset \"kinds\"" msg)
+                      #t)))
+  (test-error "list->tilemap: a turned 22.5 degree slope is an error"
+              (list->tilemap (list (list (+ 5 d))) slopes: '((5 0 8))))
+  (test-error "a diagonal flip of a slope on tiles that are not square"
+              (list->tilemap (list (list (+ 5 d))) tile-width: 16 tile-height: 8 slopes: '((5 0 8)))))
+
 (test-group "slope tiles: mistakes are named at load"
   (define (names? tiles . words)
     (tk-tmx tk-path tiles)
@@ -168,6 +236,16 @@
                (names? (tk-tile 2 '("slope-left" "int" "4")) "tile 2" "\"slope-left\"" "\"slope-right\""))
   (test-assert "a height beyond the tile"
                (names? (tk-tile 0 '("slope-left" "int" "0") '("slope-right" "int" "17")) "\"slope-right\"" "17" "16"))
+  (test-assert "\"ceiling-rigth\""
+               (names? (tk-tile 1 '("ceiling-left" "int" "0") '("ceiling-rigth" "int" "16")) "\"ceiling-right\""))
+  (test-assert "one depth without the other"
+               (names? (tk-tile 2 '("ceiling-right" "int" "4")) "tile 2" "\"ceiling-left\"" "\"ceiling-right\""))
+  (test-assert "a depth beyond the tile"
+               (names? (tk-tile 0 '("ceiling-left" "int" "-1") '("ceiling-right" "int" "16")) "\"ceiling-left\"" "-1"))
+  (test-assert "a floor and a ceiling on one tile"
+               (names? (tk-tile 3 '("ceiling-left" "int" "0") '("ceiling-right" "int" "16")
+                                '("slope-left" "int" "0") '("slope-right" "int" "16"))
+                       "tile 3" "slope-left" "ceiling-left"))
   (test-error "list->tilemap: a slope with a height beyond the tile"
               (list->tilemap '((5)) slopes: '((5 0 20)))))
 
