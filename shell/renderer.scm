@@ -37,7 +37,10 @@
 ;;;      its particles drawn first (particles.scm). When any entity has a
 ;;;      #:z, entities are drawn by #:z (default 0), ties in list order.
 ;;;      An entity with none of these keys is drawn as before them, read by
-;;;      the same single C walk (keys.c) that reads #:tile-id and the rest;
+;;;      the same single C walk (keys.c) that reads #:tile-id and the rest.
+;;;      The entities are drawn by one walk in C (shell/sprites.c) with
+;;;      these rules' arithmetic; what it cannot draw exactly so goes to
+;;;      the Scheme below, in order (render-entities!);
 ;;;   4. with `debug?: #t` (default #f), the debug overlay (below).
 ;;;
 ;;; The rounding rule: a world position x (an exact integer, a rational or
