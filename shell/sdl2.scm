@@ -1070,8 +1070,9 @@ EOF
                     s32vector scheme-object scheme-object))
   (define (render-sprite-walk! r t entities keys sheet cx cy)
     (let* ((rp (live-renderer* 'render-copy! r))
-           ;; a texture of another renderer: the renderer's own path says so
-           (tp (and t (eq? (texture-renderer t) r) (live-texture* 'render-copy! t)))
+           ;; a texture of another renderer, or a dead one: the sprites
+           ;; go to the renderer's own path, which says so
+           (tp (and t (texture? t) (eq? (texture-renderer t) r) (texture-alive? t) (texture-ptr t)))
            (rest (sprite-walk rp tp entities keys sheet cx cy))
            (status (foreign-value "ds_walk_status" int)))
       (check-status 'render-copy! "SDL_RenderCopy" status)

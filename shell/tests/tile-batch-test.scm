@@ -247,7 +247,19 @@
     (test-error "an error of the Scheme path is still raised: a negative scale"
                 (drawn-by-scheme (list (list #:x 1 #:y 2 #:tile-id 1) (list #:x 1 #:y 2 #:tile-id 1 #:scale -1))))
     (test-error "and a #:tint that is no colour"
-                (drawn-by-scheme (list (list #:x 1 #:y 2 #:tile-id 1 #:tint '(1 2)))))))
+                (drawn-by-scheme (list (list #:x 1 #:y 2 #:tile-id 1 #:tint '(1 2)))))
+    ;; a sheet's texture destroyed: a scene of boxes is drawn as before,
+    ;; a sprite of it is the renderer's error
+    (let ((dead (img-load-texture! r (make-pathname tb-dir "sheet-a.png"))))
+      (destroy-texture! dead)
+      (test "a dead sheet texture and only a box: drawn, no error" '(0 0 255)
+            (begin (render-scene! r (make-sprite-scene tileset: sheet tileset-texture: dead
+                                                       entities: (list (list #:x 0 #:y 0 #:width 4 #:height 4
+                                                                             #:color '(0 0 255)))))
+                   (take (renderer-pixel r 1 1) 3)))
+      (test-error "a dead sheet texture and a sprite: an error"
+                  (render-scene! r (make-sprite-scene tileset: sheet tileset-texture: dead
+                                                      entities: (list (list #:x 0 #:y 0 #:tile-id 1))))))))
 
 (test-group "the fast path draws what the cell-by-cell walk draws (a real window, opengl)"
   (let ((xvfb? (zero? (system "command -v xvfb-run >/dev/null 2>&1"))))
