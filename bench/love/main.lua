@@ -4,8 +4,9 @@
 -- and each moved every frame by an update), fancy (the same turned, scaled
 -- 1.5 and at alpha 160), map (a 200 x 200 three-layer map of 16 x 16
 -- tiles scrolling (3, 2) px a frame, each layer one SpriteBatch built once,
--- as the Simple Tiled Implementation library draws Tiled maps). Prints the CPU time (os.clock: user + system,
--- all threads) per frame of FRAMES frames (default 300) after 30 of warm-up.
+-- as the Simple Tiled Implementation library draws Tiled maps). Prints the
+-- CPU time (os.clock: user + system, all threads) per frame of FRAMES
+-- frames (default 300) after 30 of warm-up.
 
 local scene, n, frames, warmup = "sprites", 1000, tonumber(os.getenv("FRAMES") or "300"), 30
 local W, H = 800, 600
