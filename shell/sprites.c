@@ -15,7 +15,10 @@
    flonums (the same double operations, in the same order), fixnums within
    +-2^20, and fractions of such numerators over a power of two up to 2^8
    (exact in a double, and so are the few sums and products of them a
-   sprite's box takes: at most 2^42 with 16 bits of fraction). */
+   sprite's box takes, with tiles below 2^16 px: fewer than 53 significant
+   bits, since a turn by a whole multiple of 90 degrees, the one exact
+   turn, adds one product and not two). Floating-point contraction (FMA)
+   would change the sums; neither the x86-64 baseline nor wasm32 has it. */
 #include "shell/keys.c"
 
 /* renderer.scm's define-drawn-keys, in its order. */
