@@ -10,19 +10,24 @@
    test, DS_KEY_BIT's mask (core/entity.h). */
 #include "core/entity.h"
 
-static C_word ds_entity_keys(C_word alist, C_word keys, C_word out) {
+#define DS_MAX_DRAWN_KEYS 30
+
+/* The walk itself, into a C array out[0..n) (n at most
+   DS_MAX_DRAWN_KEYS): shell/sprites.c reads an entity's keys with it
+   too. Answers the bits as above, or -1. */
+static C_word ds_read_keys(C_word alist, C_word keys, int n, C_word *out) {
   C_word ps, p, k;
-  int n = C_header_size(keys), i;
+  int i;
   C_uword mask = 0;
   C_word bits = 0, seen = 0;
   for (i = 0; i < n; i++) {
     mask |= DS_KEY_BIT(C_block_item(keys, i));
-    C_set_block_item(out, i, C_SCHEME_FALSE);
+    out[i] = C_SCHEME_FALSE;
   }
   for (ps = alist; ps != C_SCHEME_END_OF_LIST; ps = C_block_item(ps, 1)) {
-    if (!C_truep(C_i_pairp(ps))) return C_fix(-1);
+    if (C_immediatep(ps) || !C_truep(C_i_pairp(ps))) return -1;
     p = C_block_item(ps, 0);
-    if (!C_truep(C_i_pairp(p))) return C_fix(-1);
+    if (C_immediatep(p) || !C_truep(C_i_pairp(p))) return -1;
     k = C_block_item(p, 0);
     if (!(mask & DS_KEY_BIT(k))) continue;
     for (i = 0; i < n; i++)
@@ -31,12 +36,21 @@ static C_word ds_entity_keys(C_word alist, C_word keys, C_word out) {
           seen |= (C_word)1 << i;
           if (C_block_item(p, 1) != C_SCHEME_FALSE) {
             bits |= (C_word)1 << i;
-            C_mutate(&C_block_item(out, i), C_block_item(p, 1));
+            out[i] = C_block_item(p, 1);
           }
         }
         break;
       }
   }
+  return bits;
+}
+
+static C_word ds_entity_keys(C_word alist, C_word keys, C_word out) {
+  C_word v[DS_MAX_DRAWN_KEYS], bits;
+  int n = C_header_size(keys), i;
+  if (n > DS_MAX_DRAWN_KEYS) n = DS_MAX_DRAWN_KEYS;
+  bits = ds_read_keys(alist, keys, n, v);
+  for (i = 0; i < n; i++) C_mutate(&C_block_item(out, i), bits < 0 ? C_SCHEME_FALSE : v[i]);
   return C_fix(bits);
 }
 

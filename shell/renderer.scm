@@ -37,7 +37,10 @@
 ;;;      its particles drawn first (particles.scm). When any entity has a
 ;;;      #:z, entities are drawn by #:z (default 0), ties in list order.
 ;;;      An entity with none of these keys is drawn as before them, read by
-;;;      the same single C walk (keys.c) that reads #:tile-id and the rest;
+;;;      the same single C walk (keys.c) that reads #:tile-id and the rest.
+;;;      The entities are drawn by one walk in C (shell/sprites.c) with
+;;;      these rules' arithmetic; what it cannot draw exactly so goes to
+;;;      the Scheme below, in order (render-entities!);
 ;;;   4. with `debug?: #t` (default #f), the debug overlay (below).
 ;;;
 ;;; The rounding rule: a world position x (an exact integer, a rational or
@@ -111,6 +114,7 @@
 (module (downstroke renderer)
   (render-scene! render-map-layers! render-entities! render-entity!
    screen-coordinate tileset-source-rect layer-camera
+   sprite-fast-path? entities-drawn-by-scheme
    render-debug-overlay! render-draw-line!
    *debug-hitbox-color* *debug-cell-color* *debug-velocity-color*
    *debug-warning-color* *debug-velocity-scale* *debug-object-color*
@@ -424,13 +428,48 @@
   ;; ties in list order (a stable sort).
   ;; On an accelerated renderer the unturned copies of a run of entities
   ;; sharing a texture go to SDL as one call (sdl2.scm's render-batched).
+  ;; With sprite-fast-path? (the default) the entities are drawn by one
+  ;; walk in C (sdl2.scm's render-sprite-walk!, shell/sprites.c), which
+  ;; hands back to draw-entity! each entity it does not draw itself: the
+  ;; same copies either way (shell/tests/tile-batch-test.scm compares them
+  ;; pixel for pixel). (entities-drawn-by-scheme): how many entities of the
+  ;; last call went to draw-entity!.
+  (define sprite-fast-path? (make-parameter #t))
+  (define scheme-drawn 0)
+  (define (entities-drawn-by-scheme) scheme-drawn)
+
+  ;; The sheet's numbers for the walk: first gid, tile width and height,
+  ;; spacing, margin, columns as tileset-source-rect counts them (columns
+  ;; 0: no sheet, or numbers the walk does not take).
+  (define (sheet-numbers ts)
+    (let ((ns (and ts (list (tileset-first-gid ts) (tileset-tile-width ts) (tileset-tile-height ts)
+                            (or (tileset-spacing ts) 0) (or (tileset-margin ts) 0)
+                            (let ((c (or (tileset-columns ts) 1))) (if (and (fixnum? c) (fx< c 1)) 1 c))))))
+      (if (and ns (let small? ((l ns)) (or (null? l) (and (fixnum? (car l)) (fx>= (car l) 0) (fx< (car l) 65536)
+                                                          (small? (cdr l))))))
+          (list->s32vector ns)
+          (s32vector 0 0 0 0 0 0))))
+
   (define (render-entities! r entities cx cy tileset texture #!optional (sheet-for no-sheets))
     (let ((ordered (if (any-has-key? entities #:z)
                        (map cdr (sort (map (lambda (e) (cons (sprite-number e #:z 0) e)) entities)
                                       (lambda (a b) (< (car a) (car b)))))
                        entities)))
-      (render-batched r (lambda () (for-each (lambda (e) (draw-entity! r e cx cy tileset texture sheet-for))
-                                             ordered)))))
+      (set! scheme-drawn 0)
+      (render-batched
+       r
+       (if (sprite-fast-path?)
+           (lambda ()
+             (let ((sheet (sheet-numbers tileset)))
+               (let walk ((es ordered))
+                 (let ((rest (render-sprite-walk! r texture es entity-keys sheet cx cy)))
+                   (unless (null? rest)
+                     (set! scheme-drawn (fx+ scheme-drawn 1))
+                     (draw-entity! r (car rest) cx cy tileset texture sheet-for)
+                     (walk (cdr rest)))))))
+           (lambda ()
+             (set! scheme-drawn (length ordered))
+             (for-each (lambda (e) (draw-entity! r e cx cy tileset texture sheet-for)) ordered))))))
 
   ;;; ------------------------------------------------------------------
   ;;; Scenes

@@ -69,6 +69,8 @@
    render-present! render-read-pixels
    ;; for (downstroke mapdraw): a tile layer's cells in one call
    render-tile-cells! render-batched render-batching?
+   ;; for (downstroke renderer): a run of entities drawn in one call
+   render-sprite-walk!
    ;; textures
    img-load-texture! destroy-texture! texture? texture-alive? texture-size max-image-pixels
    texture-alpha-mod-set! texture-alpha-mod texture-blend-mode-set!
@@ -287,19 +289,20 @@ static void downstroke_view(SDL_Renderer *r, int *w, int *h) {
 
 /* The copy queue (render-batched): between ds_q_begin and ds_q_end, an
    unturned copy of a source inside its texture, on the accelerated
-   renderer being batched, is kept as a quad; a run of one texture goes to
-   SDL as one SDL_RenderGeometry call (tiles.c's ds_batch_flush: the
-   texture's modulation as every vertex's colour). Anything else drawn or
-   changed on the renderer sends the run first (ds_q_flush: sdl2.scm calls
-   it wherever a renderer or texture is used), so the order of what is
-   drawn never changes. */
+   renderer being batched, is kept as a quad whose vertices carry the
+   colour and alpha the copy is drawn with (the texture's modulation when
+   it was queued, as SDL's own copy takes it); a run of one texture goes
+   to SDL as one SDL_RenderGeometry call (tiles.c's ds_batch_send).
+   Anything else drawn on the renderer sends the run first (ds_q_flush:
+   sdl2.scm calls it wherever a renderer or texture is used), so the
+   order of what is drawn never changes. */
 static SDL_Renderer *ds_q_r = NULL;
 static SDL_Texture *ds_q_t = NULL;
 static int ds_q_n = 0, ds_q_tw = 1, ds_q_th = 1, ds_q_status = 0;
 
 static void ds_q_flush(void) {
   if (ds_q_n > 0) {
-    int st = ds_batch_flush(ds_q_r, ds_q_t, ds_q_n);
+    int st = ds_batch_send(ds_q_r, ds_q_t, ds_q_n);
     if (st < 0) ds_q_status = st;
   }
   ds_q_n = 0;
@@ -315,8 +318,9 @@ static int ds_q_end(void) {
   return st;
 }
 
-/* 1 when the copy was queued. */
-static int ds_q_copy(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *dst, int h, int v) {
+/* 1 when the copy was queued, its vertices coloured c. */
+static int ds_q_copy_colored(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst,
+                             int h, int v, SDL_Color c) {
   if (r != ds_q_r || !src || !dst || dst->w <= 0 || dst->h <= 0) return 0;
   if (t != ds_q_t || ds_q_n == DS_BATCH_QUADS) {
     ds_q_flush();
@@ -328,22 +332,30 @@ static int ds_q_copy(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *d
   }
   if (src->x < 0 || src->y < 0 || src->w <= 0 || src->h <= 0
       || src->x + src->w > ds_q_tw || src->y + src->h > ds_q_th) { ds_q_flush(); return 0; }
+  ds_batch_quad_to(ds_q_n, ds_q_tw, ds_q_th, src->x, src->y, src->w, src->h,
+                   dst->x, dst->y, dst->w, dst->h, h, v);
   {
     SDL_Vertex *p = &ds_batch_verts[ds_q_n * 4];
-    float x0 = (float)dst->x, y0 = (float)dst->y;
-    float x1 = (float)(dst->x + dst->w), y1 = (float)(dst->y + dst->h);
-    float u0 = (float)src->x / ds_q_tw, u1 = (float)(src->x + src->w) / ds_q_tw;
-    float v0 = (float)src->y / ds_q_th, v1 = (float)(src->y + src->h) / ds_q_th, tmp;
-    if (h) { tmp = u0; u0 = u1; u1 = tmp; }
-    if (v) { tmp = v0; v0 = v1; v1 = tmp; }
-    p[0].position.x = x0; p[0].position.y = y0; p[0].tex_coord.x = u0; p[0].tex_coord.y = v0;
-    p[1].position.x = x1; p[1].position.y = y0; p[1].tex_coord.x = u1; p[1].tex_coord.y = v0;
-    p[2].position.x = x0; p[2].position.y = y1; p[2].tex_coord.x = u0; p[2].tex_coord.y = v1;
-    p[3].position.x = x1; p[3].position.y = y1; p[3].tex_coord.x = u1; p[3].tex_coord.y = v1;
+    p[0].color = c; p[1].color = c; p[2].color = c; p[3].color = c;
   }
   ds_q_n++;
   return 1;
 }
+
+/* The texture's modulation, as SDL's copy would draw it. */
+static SDL_Color ds_texture_modulation(SDL_Texture *t) {
+  SDL_Color c = { 255, 255, 255, 255 };
+  SDL_GetTextureColorMod(t, &c.r, &c.g, &c.b);
+  SDL_GetTextureAlphaMod(t, &c.a);
+  return c;
+}
+
+static int ds_q_copy(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *dst, int h, int v) {
+  if (r != ds_q_r) return 0;
+  return ds_q_copy_colored(r, t, src, dst, h, v, ds_texture_modulation(t));
+}
+
+#include "shell/sprites.c"
 EOF
 )
 
@@ -1044,6 +1056,27 @@ EOF
                                        c0 c1 r0 r1 order table (s32vector-length table) tw th
                                        fx fy vw vh pass (not (renderer-software? r)) used))
              #t))))
+
+;;; (render-sprite-walk! r texture entities keys sheet cx cy): draws
+  ;;; entities from the first on, as (downstroke renderer) draws them, in
+  ;;; one walk in C (shell/sprites.c says which it takes), and answers the
+  ;;; list from the first one it left to the renderer ('() when none).
+  ;;; texture: the scene's sprite sheet or #f; keys: the renderer's vector
+  ;;; of the keys it draws by; sheet: an s32vector of the sheet's first gid,
+  ;;; tile width and height, spacing, margin and columns (0: none); cx cy:
+  ;;; the camera.
+  (define sprite-walk
+    (foreign-lambda scheme-object "ds_sprite_walk" c-pointer c-pointer scheme-object scheme-object
+                    s32vector scheme-object scheme-object))
+  (define (render-sprite-walk! r t entities keys sheet cx cy)
+    (let* ((rp (live-renderer* 'render-copy! r))
+           ;; a texture of another renderer, or a dead one: the sprites
+           ;; go to the renderer's own path, which says so
+           (tp (and t (texture? t) (eq? (texture-renderer t) r) (texture-alive? t) (texture-ptr t)))
+           (rest (sprite-walk rp tp entities keys sheet cx cy))
+           (status (foreign-value "ds_walk_status" int)))
+      (check-status 'render-copy! "SDL_RenderCopy" status)
+      rest))
 
   (define (render-view-size r)
     (let-location ((w int 0) (h int 0))

@@ -32,9 +32,8 @@ static void ds_tiles_texture(int i, SDL_Texture *t) {
 
 static long long ds_floor_half(long long v) { return v >= 0 ? v / 2 : -((-v + 1) / 2); }
 
-/* The pending run: n quads of texture t. */
-static int ds_batch_flush(SDL_Renderer *r, SDL_Texture *t, int n) {
-  Uint8 cr = 255, cg = 255, cb = 255, ca = 255;
+/* n quads of texture t whose vertices are all written, colours too. */
+static int ds_batch_send(SDL_Renderer *r, SDL_Texture *t, int n) {
   int i;
   if (n == 0 || !t) return 0;
   if (!ds_batch_indices_ready) {
@@ -49,28 +48,47 @@ static int ds_batch_flush(SDL_Renderer *r, SDL_Texture *t, int n) {
     }
     ds_batch_indices_ready = 1;
   }
+  return SDL_RenderGeometry(r, t, ds_batch_verts, n * 4, ds_batch_indices, n * 6);
+}
+
+/* The pending run: n quads of texture t, each vertex coloured with the
+   texture's modulation (what SDL's own copy would use). */
+static int ds_batch_flush(SDL_Renderer *r, SDL_Texture *t, int n) {
+  Uint8 cr = 255, cg = 255, cb = 255, ca = 255;
+  int i;
+  if (n == 0 || !t) return 0;
   SDL_GetTextureColorMod(t, &cr, &cg, &cb);
   SDL_GetTextureAlphaMod(t, &ca);
   for (i = 0; i < n * 4; i++) {
     ds_batch_verts[i].color.r = cr; ds_batch_verts[i].color.g = cg;
     ds_batch_verts[i].color.b = cb; ds_batch_verts[i].color.a = ca;
   }
-  return SDL_RenderGeometry(r, t, ds_batch_verts, n * 4, ds_batch_indices, n * 6);
+  return ds_batch_send(r, t, n);
 }
 
-static void ds_batch_quad(int q, int tex_w, int tex_h, int sx, int sy, int sw, int sh,
-                          int dx, int dy, int h, int v) {
+/* Quad q: source sx sy sw sh of a tex_w x tex_h texture over the
+   destination dx dy dw dh. A flip swaps the corners' places, not their
+   texture coordinates, as SDL's own flipped copy does: the quad's
+   diagonal then runs as SDL's, and a stretched copy samples the same
+   texels. */
+static void ds_batch_quad_to(int q, int tex_w, int tex_h, int sx, int sy, int sw, int sh,
+                             int dx, int dy, int dw, int dh, int h, int v) {
   SDL_Vertex *p = &ds_batch_verts[q * 4];
-  float x0 = (float)dx, y0 = (float)dy, x1 = (float)(dx + sw), y1 = (float)(dy + sh);
+  float x0 = (float)dx, y0 = (float)dy, x1 = (float)(dx + dw), y1 = (float)(dy + dh);
   float u0 = (float)sx / tex_w, u1 = (float)(sx + sw) / tex_w;
   float v0 = (float)sy / tex_h, v1 = (float)(sy + sh) / tex_h;
   float t;
-  if (h) { t = u0; u0 = u1; u1 = t; }
-  if (v) { t = v0; v0 = v1; v1 = t; }
+  if (h) { t = x0; x0 = x1; x1 = t; }
+  if (v) { t = y0; y0 = y1; y1 = t; }
   p[0].position.x = x0; p[0].position.y = y0; p[0].tex_coord.x = u0; p[0].tex_coord.y = v0;
   p[1].position.x = x1; p[1].position.y = y0; p[1].tex_coord.x = u1; p[1].tex_coord.y = v0;
   p[2].position.x = x0; p[2].position.y = y1; p[2].tex_coord.x = u0; p[2].tex_coord.y = v1;
   p[3].position.x = x1; p[3].position.y = y1; p[3].tex_coord.x = u1; p[3].tex_coord.y = v1;
+}
+
+static void ds_batch_quad(int q, int tex_w, int tex_h, int sx, int sy, int sw, int sh,
+                          int dx, int dy, int h, int v) {
+  ds_batch_quad_to(q, tex_w, tex_h, sx, sy, sw, sh, dx, dy, sw, sh, h, v);
 }
 
 /* One unturned cell as mapdraw.scm's cell walk copies it. */

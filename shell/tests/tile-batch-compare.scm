@@ -120,9 +120,11 @@
                          (loop (+ i 4) (if (= (u8vector-ref fast i) 10) n (+ n 1))))))))
          tb-views)))
 
-;; Sprites drawn with the copy queue (render-batching?, the default)
-;; against one copy at a time: crowds of plain, mirrored, scaled, tinted,
-;; translucent and turned sprites of two sheets, by #:z, between boxes.
+;; Sprites drawn by the C walk with the copy queue (sprite-fast-path? and
+;; render-batching?, the defaults) against one copy at a time by the
+;; Scheme path: crowds of plain, mirrored, scaled, tinted, translucent and
+;; turned sprites of two sheets, by #:z, between boxes, at whole and
+;; fractional places, through cameras at whole and fractional places.
 (define (tb-sprite-scenes dir)
   (let* ((a (make-pathname dir "sheet-a.png")) (b (make-pathname dir "sheet-b.png"))
          (sheet-a (make-sheet-tileset a tile-width: 8 tile-height: 8 columns: 4 name: "a"))
@@ -132,43 +134,89 @@
                     (if (= i n)
                         (reverse out)
                         (loop (+ i 1)
-                              (cons (let ((more (extra i)))
-                                      (append (list #:x (modulo (* i 37) 190) #:y (modulo (* i 23) 140)
-                                                    #:width 8 #:height 8)
-                                              (if (memq #:color more) '() (list #:tile-id (+ 1 (modulo i 8))))
-                                              more))
-                                    out)))))))
+                              (cons (let* ((more (extra i))
+                                           (given? (lambda (k) (let find ((l more))
+                                                                 (and (pair? l) (or (eq? (car l) k) (find (cddr l)))))))
+                                           (unless-given (lambda (k v) (if (given? k) '() (list k v)))))
+                                      (append more
+                                              (unless-given #:x (modulo (* i 37) 190))
+                                              (unless-given #:y (modulo (* i 23) 140))
+                                              (list #:width 8 #:height 8)
+                                              (if (given? #:color) '() (unless-given #:tile-id (+ 1 (modulo i 8))))))
+                                    out))))))
+         (pick (lambda (i l) (list-ref l (modulo i (length l))))))
     (list
-     (list "plain" sheet-a sheet-b (crowd 300 (lambda (i) '())))
+     (list "plain" sheet-a sheet-b (crowd 300 (lambda (i) '())) '(0 0))
      (list "mirrored and facing" sheet-a sheet-b
            (crowd 300 (lambda (i) (case (modulo i 4) ((0) '(#:flip-x? #t)) ((1) '(#:flip-y? #t))
-                                        ((2) '(#:facing -1)) (else '())))))
+                                        ((2) '(#:facing -1)) (else '(#:flip-x? #t #:facing -1)))))
+           '(0 0))
      (list "two sheets, by z, between boxes" sheet-a sheet-b
            (crowd 300 (lambda (i) (append (list #:z (modulo i 3))
                                           (if (odd? i) '(#:tileset "b") '())
-                                          (if (= 0 (modulo i 7)) '(#:color (200 10 10 180)) '())))))
+                                          (if (= 0 (modulo i 7)) '(#:color (200 10 10 180)) '()))))
+           '(0 0))
      (list "scaled, tinted, translucent" sheet-a sheet-b
            (crowd 300 (lambda (i) (case (modulo i 3) ((0) '(#:scale 3/2)) ((1) '(#:tint (255 128 64)))
-                                        (else '(#:alpha 150))))))
+                                        (else '(#:alpha 150)))))
+           '(0 0))
      (list "turned" sheet-a sheet-b
-           (crowd 200 (lambda (i) (if (even? i) (list #:angle (* 7 i)) '())))))))
+           (crowd 200 (lambda (i) (if (even? i) (list #:angle (* 7 i)) '())))
+           '(0 0))
+     (list "turned at many angles and scales, origins, offsets" sheet-a sheet-b
+           (crowd 360 (lambda (i)
+                        (list #:angle (pick i (list (* 7 i) (+ 0.5 (* 13 i)) 90 -270 180.0 45/2 (* 1.1 i)))
+                              #:scale (pick i '(1 1/2 3/2 2 0.75 1.25 5/4 3))
+                              #:origin-x (pick i '(0 4 8 1/2 2.5 -3))
+                              #:origin-y (pick i '(0 4 7 3/4 6.25))
+                              #:sprite-offset-x (pick i '(0 -3 5/2 1.5))
+                              #:alpha (pick i '(255 200 127.5 90)))))
+           '(0 0))
+     (list "fractional places and cameras, scales apart" sheet-a sheet-b
+           (crowd 300 (lambda (i)
+                        (append (list #:x (+ (modulo (* i 37) 190) (pick i '(0.37 -0.5 1/4 0.999 0)))
+                                      #:y (+ (modulo (* i 23) 140) (pick i '(0.5 3/8 -0.25 0))))
+                                (pick i '(() (#:scale-x 5/4 #:scale-y 0.8) (#:scale-x 1.5 #:flip-y? #t)
+                                          (#:sprite-offset-y -2.75 #:facing -1) (#:scale 1/2 #:origin-x 0))))))
+           '(2.5 -1.75))
+     (list "tints and alphas held to 0-255, boxes, nothing" sheet-a sheet-b
+           (crowd 300 (lambda (i)
+                        (pick i (list '(#:tint (300 -5 127.5)) '(#:tint (10 20 30 40)) '(#:alpha 127.5)
+                                      '(#:alpha 0) '(#:alpha -3 #:tint (0 255 0)) '(#:alpha 1000)
+                                      '(#:color (0 200 0)) '(#:tint (color 90 90 250)) '(#:alpha 2.5)
+                                      '(#:tile-id #f #:animations #f) '(#:scale 0 #:tint (1 2 3))))))
+           '(3/2 -5/4))
+     (list "what the walk leaves to Scheme: far, huge, thirds" sheet-a sheet-b
+           (crowd 120 (lambda (i)
+                        (pick i (list '(#:x 1000000000) (list #:x (+ 20 (/ i 3))) '(#:scale 1e200)
+                                      (list #:y (- 1/3 (modulo i 50)) #:angle 10)
+                                      '(#:sprite-offset-x 20000) '(#:tile-id 100000)
+                                      '()))))
+           '(0 0))
+     (list "through a camera at thirds (left to Scheme)" sheet-a sheet-b
+           (crowd 100 (lambda (i) (if (even? i) '(#:scale 3/2 #:angle 30) '())))
+           '(1/3 2/3)))))
 
 (define (tb-compare-sprites r dir)
   (let ((tex-a (img-load-texture! r (make-pathname dir "sheet-a.png")))
         (tex-b (img-load-texture! r (make-pathname dir "sheet-b.png"))))
     (map (lambda (case)
-           (let* ((scene (make-sprite-scene tileset: (cadr case) tileset-texture: tex-a
+           (let* ((camera (list-ref case 4))
+                  (scene (make-sprite-scene tileset: (cadr case) tileset-texture: tex-a
                                             tilesets: (list (caddr case)) background: '(10 20 30)
+                                            camera: (make-camera x: (car camera) y: (cadr camera) bounds: #f)
                                             entities: (cadddr case)))
                   (textures (list (cons (make-pathname dir "sheet-b.png") tex-b)
                                   (cons (make-pathname dir "sheet-a.png") tex-a)))
-                  (picture (lambda (on?)
-                             (parameterize ((render-batching? on?))
+                  (picture (lambda (fast? batch?)
+                             (parameterize ((render-batching? batch?) (sprite-fast-path? fast?))
                                (render-scene! r scene textures: textures))
                              (receive (bytes w h) (render-read-pixels r) bytes)))
-                  (on (picture #t)) (off (picture #f)))
-             (list (sprintf "sprites: ~a" (car case)) (tb-differing on off)
+                  ;; the C walk queued, the C walk copy by copy, against Scheme copy by copy
+                  (walk (picture #t #t)) (walk-direct (picture #t #f)) (scheme (picture #f #f)))
+             (list (sprintf "sprites: ~a" (car case))
+                   (+ (tb-differing walk scheme) (tb-differing walk-direct scheme))
                    (let loop ((i 0) (n 0))
-                     (if (>= i (u8vector-length on)) n
-                         (loop (+ i 4) (if (= (u8vector-ref on i) 10) n (+ n 1))))))))
+                     (if (>= i (u8vector-length walk)) n
+                         (loop (+ i 4) (if (= (u8vector-ref walk i) 10) n (+ n 1))))))))
          (tb-sprite-scenes dir))))

@@ -217,6 +217,50 @@
                 (test-assert (sprintf "~a: drawn" (car res)) (> (caddr res) 1000)))
               (tb-compare-sprites r tb-dir))))
 
+;; The walk in C draws every entity it can (renderer.scm's
+;; render-entities!, shell/sprites.c): none of a crowd of plain, scaled,
+;; turned, tinted and translucent sprites goes to the Scheme path, and
+;; what it leaves (boxes, other sheets, thirds) is counted.
+(test-group "sprites: the walk in C draws what it can"
+  (let* ((s (create-rgba-surface! 64 32)) (r (create-software-renderer! s))
+         (sheet (make-sheet-tileset (make-pathname tb-dir "sheet-a.png") tile-width: 8 tile-height: 8 columns: 4))
+         (tex (img-load-texture! r (make-pathname tb-dir "sheet-a.png")))
+         (drawn-by-scheme
+          (lambda (entities)
+            (render-scene! r (make-sprite-scene tileset: sheet tileset-texture: tex entities: entities))
+            (entities-drawn-by-scheme))))
+    (test "plain, scaled, turned, tinted, translucent, mirrored: none by Scheme" 0
+          (drawn-by-scheme (list (list #:x 1 #:y 2 #:tile-id 1)
+                                 (list #:x 3.5 #:y 2 #:tile-id 2 #:scale 3/2)
+                                 (list #:x 3 #:y 2 #:tile-id 3 #:angle 30 #:origin-x 0)
+                                 (list #:x 3 #:y 2.25 #:tile-id 4 #:tint '(255 0 0) #:alpha 99 #:facing -1)
+                                 (list #:x 3 #:y 2 #:type 'trigger))))
+    (test "a box, another sheet by name, a third of a pixel: three by Scheme" 3
+          (drawn-by-scheme (list (list #:x 1 #:y 2 #:tile-id 1)
+                                 (list #:x 1 #:y 2 #:width 4 #:height 4 #:color '(0 0 255))
+                                 (list #:x 1 #:y 2 #:tile-id 1 #:scale 1/3)
+                                 (list #:x 1 #:y 2 #:tile-id 1)
+                                 (list #:x 1/3 #:y 2 #:tile-id 1))))
+    (test "sprite-fast-path? #f: every one by Scheme" 2
+          (parameterize ((sprite-fast-path? #f))
+            (drawn-by-scheme (list (list #:x 1 #:y 2 #:tile-id 1) (list #:x 1 #:y 2 #:tile-id 1)))))
+    (test-error "an error of the Scheme path is still raised: a negative scale"
+                (drawn-by-scheme (list (list #:x 1 #:y 2 #:tile-id 1) (list #:x 1 #:y 2 #:tile-id 1 #:scale -1))))
+    (test-error "and a #:tint that is no colour"
+                (drawn-by-scheme (list (list #:x 1 #:y 2 #:tile-id 1 #:tint '(1 2)))))
+    ;; a sheet's texture destroyed: a scene of boxes is drawn as before,
+    ;; a sprite of it is the renderer's error
+    (let ((dead (img-load-texture! r (make-pathname tb-dir "sheet-a.png"))))
+      (destroy-texture! dead)
+      (test "a dead sheet texture and only a box: drawn, no error" '(0 0 255)
+            (begin (render-scene! r (make-sprite-scene tileset: sheet tileset-texture: dead
+                                                       entities: (list (list #:x 0 #:y 0 #:width 4 #:height 4
+                                                                             #:color '(0 0 255)))))
+                   (take (renderer-pixel r 1 1) 3)))
+      (test-error "a dead sheet texture and a sprite: an error"
+                  (render-scene! r (make-sprite-scene tileset: sheet tileset-texture: dead
+                                                      entities: (list (list #:x 0 #:y 0 #:tile-id 1))))))))
+
 (test-group "the fast path draws what the cell-by-cell walk draws (a real window, opengl)"
   (let ((xvfb? (zero? (system "command -v xvfb-run >/dev/null 2>&1"))))
     (test-assert "xvfb-run is installed (the Debian packages xvfb and xauth)" xvfb?)
@@ -239,7 +283,7 @@
         (unless (zero? status) (for-each print lines))
         (test-assert "SDL's renderer is an accelerated one (not software)"
                      (and (member "renderer opengl" lines) #t))
-        (test "every case compared" 30 (length cases))
+        (test "every case compared" 35 (length cases))
         (for-each (lambda (c)
                     (test (sprintf "window, ~a: same pixels" (car c)) "0" (cadr c))
                     (when (or (substring-index "(0 0 0)" (car c)) (substring-index "sprites:" (car c)))
