@@ -12,9 +12,7 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 out=$top/build/web/wasm32
 mkdir -p "$out"
 export NODE_PATH=${NODE_PATH:-/usr/share/nodejs}
-# the libraries' setjmp mode (tools/web-deps.sh)
-DEPS_FLAGS=$(cat "$deps/flags")
-CFLAGS="-O1 $DEPS_FLAGS -fno-strict-aliasing -fwrapv -DHAVE_CHICKEN_CONFIG_H -DC_ENABLE_PTABLES
+CFLAGS="-O1 -fno-strict-aliasing -fwrapv -DHAVE_CHICKEN_CONFIG_H -DC_ENABLE_PTABLES
   -I$deps/include/chicken -I$deps/include -I$top -w"
 LIBS="${WASM32_LIB:-$top/build/web/libdownstroke.a}"
 for l in SDL2_ttf freetype SDL2_image SDL2_mixer SDL2 expat zstd z chicken; do
@@ -35,7 +33,7 @@ for name in "$@"; do
 EOF
   (cd "$top/tests" && csc -t "$out/$name.scm" -static -O1 -o "$out/$name.c" 2>"$out/$name.log") &&
     emcc $CFLAGS -c "$out/$name.c" -o "$out/$name.o" 2>>"$out/$name.log" &&
-    emcc -O0 $DEPS_FLAGS "$out/$name.o" $LIBS -sNODERAWFS=1 -sALLOW_MEMORY_GROWTH=1 -sEXIT_RUNTIME=1 \
+    emcc -O0 "$out/$name.o" $LIBS -sNODERAWFS=1 -sALLOW_MEMORY_GROWTH=1 -sEXIT_RUNTIME=1 \
          -o "$out/$name.js" 2>>"$out/$name.log" ||
     { echo "FAIL $name: did not build (build/web/wasm32/$name.log)"; tail -5 "$out/$name.log"; exit 1; }
   last=$(cd "$top/tests" && node --no-experimental-fetch "$out/$name.js" 2>&1 | tee "$out/$name.out" | tail -1)

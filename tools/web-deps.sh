@@ -12,7 +12,7 @@
 set -e
 HERE=$(cd "$(dirname "$0")" && pwd)
 # Bump when the way a library is built below changes.
-RECIPE=4
+RECIPE=3
 PACKAGES="chicken libsdl2 libsdl2-image libsdl2-mixer zlib freetype libsdl2-ttf expat libzstd"
 JOBS=2
 export NODE_PATH=${NODE_PATH:-/usr/share/nodejs}
@@ -92,15 +92,7 @@ step() {
   say "$name done in $(( $(date +%s) - t0 )) s"
 }
 
-# setjmp and longjmp as WebAssembly exceptions, not emscripten's default
-# JavaScript ones: CHICKEN leaves every minor collection by longjmp, and a
-# JavaScript exception unwinding the wasm stack made half of a crowd's
-# frame in the browser (docs/performance.org, "Where the browser's time
-# goes"). Every library with a setjmp (CHICKEN's runtime, freetype), and
-# every compile and link against them, must agree on the mode: the folder's
-# file "flags" says it to tools/web.mk and tools/wasm32-check.sh.
-SJLJ="-sSUPPORT_LONGJMP=wasm"
-CFLAGS_WEB="-O2 $SJLJ"
+CFLAGS_WEB="-O2"
 compile_all() { # out.a cflags... -- files...
   out=$1; shift; flags=""
   while [ "$1" != "--" ]; do flags="$flags $1"; shift; done; shift
@@ -114,9 +106,8 @@ build_chicken() {
   src=$(fetch chicken)
   cd "$src"
   patch -p1 < "$HERE/web/chicken-runtime.patch"
-  # (its optimization options through the environment: they are two words)
-  export C_COMPILER_OPTIMIZATION_OPTIONS="$CFLAGS_WEB"
-  m="make PLATFORM=linux ARCH= C_COMPILER=emcc LIBRARIAN=emar STATICBUILD=1 PREFIX=/downstroke-web"
+  m="make PLATFORM=linux ARCH= C_COMPILER=emcc LIBRARIAN=emar STATICBUILD=1 PREFIX=/downstroke-web
+     C_COMPILER_OPTIMIZATION_OPTIONS=-O2"
   $m chicken-config.h
   # emscripten is not Linux to the C preprocessor: the runtime finds its
   # executable the generic way.
@@ -249,7 +240,6 @@ step zstd build_zstd
 
 echo "$VERSIONS" | tr ' ' '\n' | sed '/^$/d' > "$WORK/versions"
 echo "$EMCC_VERSION" >> "$WORK/versions"
-echo "$SJLJ" > "$WORK/flags"
 rm -rf "$WORK"/src-* "$WORK"/b-* "$WORK"/obj.*
 rm -rf "$PREFIX" && mv "$WORK" "$PREFIX"
 say "built in $(( $(date +%s) - START )) s"

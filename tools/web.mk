@@ -32,20 +32,17 @@ WEB_PRELOAD ?= $(if $(filter $(CURDIR)/demo/%,$(WEB_GAME)),$(DEMO_FONT)@$(DEMO_F
 ifneq ($(filter web% wasm32-check,$(MAKECMDGOALS)),)
 WEB_DEPS  := $(shell sh tools/web-deps.sh --key)
 endif
-# What every compile and link against those libraries must say (their
-# setjmp mode): tools/web-deps.sh writes it beside them.
-WEB_DEPS_FLAGS = $(shell cat $(WEB_DEPS)/flags)
 EMCC       = NODE_PATH=/usr/share/nodejs emcc
 EMAR       = NODE_PATH=/usr/share/nodejs emar
 # As csc compiles CHICKEN's C (csc -cflags), for wasm32.
-WEB_CFLAGS = -O2 $(WEB_DEPS_FLAGS) -fno-strict-aliasing -fwrapv -DHAVE_CHICKEN_CONFIG_H -DC_ENABLE_PTABLES \
+WEB_CFLAGS = -O2 -fno-strict-aliasing -fwrapv -DHAVE_CHICKEN_CONFIG_H -DC_ENABLE_PTABLES \
              -I$(WEB_DEPS)/include/chicken -I$(WEB_DEPS)/include/SDL2 -I$(WEB_DEPS)/include \
              -I$(CURDIR) -Wno-unused-value -Wno-parentheses-equality -Wno-tautological-compare
 # The browser's call stack is about 1 MB: CHICKEN's nursery (its C stack
 # between two minor collections) must stay well below it.
 WEB_NURSERY ?= 128k
 WEB_LIBS   = SDL2_ttf freetype SDL2_image SDL2_mixer SDL2 expat zstd z chicken
-WEB_LDFLAGS = -O2 $(WEB_DEPS_FLAGS) -sALLOW_MEMORY_GROWTH=1 -sFORCE_FILESYSTEM=1 -lidbfs.js \
+WEB_LDFLAGS = -O2 -sALLOW_MEMORY_GROWTH=1 -sFORCE_FILESYSTEM=1 -lidbfs.js \
   -sEXPORTED_RUNTIME_METHODS=['FS','addRunDependency','removeRunDependency'] \
   -sDEFAULT_LIBRARY_FUNCS_TO_INCLUDE=['$$autoResumeAudioContext','$$dynCall'] \
   -sMINIFY_HTML=0 --shell-file tools/web/shell.html --pre-js tools/web/pre.js
