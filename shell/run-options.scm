@@ -245,14 +245,15 @@
 
   ;; After frame `frame` ran (update: and the camera included).
   (define (watch-frame-run! w scene frame)
-    (when (and w scene (pair? (watch-trace w)))
-      (for-each (lambda (e)
-                  (let ((keys (traced-keys (watch-trace w) e)))
-                    (when (pair? keys)
-                      (write-line (trace-line frame e keys) (watch-port w)))))
-                (scene-entities scene)))
-    (when (and w (watch-profile w) (= (modulo frame profile-frames) (- profile-frames 1)))
-      (print (profile-line frame ((watch-profile w))))))
+    (when w
+      (when (and scene (pair? (watch-trace w)))
+        (for-each (lambda (e)
+                    (let ((keys (traced-keys (watch-trace w) e)))
+                      (when (pair? keys)
+                        (write-line (trace-line frame e keys) (watch-port w)))))
+                  (scene-entities scene)))
+      (when (and (watch-profile w) (= (modulo frame profile-frames) (- profile-frames 1)))
+        (print (profile-line frame ((watch-profile w)))))))
 
   ;; The frames --profile takes its means over: those the engine's frame
   ;; profile remembers.
