@@ -6,6 +6,7 @@
 #   make bench   the benchmark scenes of docs/performance.org (never part of test)
 #   make screenshots  the demos' pictures in docs/images/
 #   make web     the platformer (or GAME=path/to/game.scm) for the browser, in build/web/
+#   make web-bench  S1 and the platformer in headless Chromium and natively, in one run
 # Each module foo.scm becomes build/downstroke.foo.so plus its import library,
 # exactly the files `chicken-install` would install.
 
@@ -38,7 +39,7 @@ export CHICKEN_REPOSITORY_PATH = $(abspath $(BUILD)):$(CHICKEN_REPO)
 # Tests and benchmarks run headless; demos open a window when there is a display.
 HEADLESS := SDL_VIDEODRIVER=dummy SDL_AUDIODRIVER=dummy
 
-.PHONY: all deps libs examples assets check test install-test demo bench screenshots clean
+.PHONY: all deps libs examples assets check test install-test demo bench web-bench screenshots clean
 all: libs
 
 deps:
@@ -105,6 +106,18 @@ bench: libs $(BUILD)/bench-scenes $(BUILD)/bench-draw
 	$(HEADLESS) csi -q -s bench/render.scm
 	$(HEADLESS) csi -q -s bench/sprites.scm
 	sh tools/bench-draw.sh $(BUILD)
+
+# docs/performance.org, "In the browser": S1 at 1,000 movers and the
+# platformer's frame profile, in headless Chromium (tools/web-bench.py) and
+# natively, alternating; WEB_BENCH_ROUNDS rounds. Not part of test.
+WEB_BENCH_ROUNDS ?= 3
+web-bench: libs assets $(BUILD)/bench-scenes
+	$(MAKE) --no-print-directory web GAME=bench/scenes.scm
+	$(MAKE) --no-print-directory web GAME=demo/platformer.scm ASSETS="demo tests/web"
+	/usr/bin/python3 tools/web-bench.py --rounds $(WEB_BENCH_ROUNDS) $(WEB)/scenes $(BUILD)/bench-scenes \
+	  --runs 1 --n 1000 S1
+	$(HEADLESS) /usr/bin/python3 tools/web-bench.py --rounds $(WEB_BENCH_ROUNDS) --until "profile: frames 540-599" \
+	  $(WEB)/platformer bin/demo-platformer --frames 600 --script tests/web/platformer-input.scm --profile
 
 clean:
 	rm -rf $(BUILD)

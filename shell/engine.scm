@@ -647,7 +647,8 @@
 
   ;; What the command line asks, under game-run!'s keywords: a keyword
   ;; given wins. (values frames input-script headless? screenshot
-  ;; screenshots trace trace-file), each `unset` when neither says.
+  ;; screenshots trace trace-file profile?), each `unset` when neither
+  ;; says (profile?, the command line's alone, is #t or #f).
   (define (run-request command-line frames input-script headless? screenshot screenshots trace trace-file)
     (let* ((opts (cond ((eq? command-line #t) (command-line-run-options (command-line-arguments)))
                        ((not command-line) '())
@@ -673,7 +674,8 @@
                               (cond ((null? os) '())
                                     ((eq? (caar os) 'trace) (cons (cdar os) (loop (cdr os))))
                                     (else (loop (cdr os))))))
-              (let ((f (asked trace-file 'trace-file))) (if (eq? f unset) #f f)))))
+              (let ((f (asked trace-file 'trace-file))) (if (eq? f unset) #f f))
+              (run-option opts 'profile #f))))
 
   (define (every-string? l) (or (null? l) (and (string? (car l)) (every-string? (cdr l)))))
 
@@ -688,20 +690,22 @@
   (define/keywords (game-run! game #!key (frames unset) (input-script unset) (record #f)
                      (headless? unset) (screenshot unset) (repl #f)
                      (screenshots '()) (trace '()) (trace-file unset) (command-line #t))
-    (receive (frames input-script headless? screenshot screenshots trace trace-file)
+    (receive (frames input-script headless? screenshot screenshots trace trace-file profile?)
         (run-request command-line frames input-script headless? screenshot screenshots trace trace-file)
       (receive (input-script script-shots) (script-screenshots input-script)
         (run-game! game frames input-script record headless? screenshot repl
-                   (append screenshots script-shots) trace trace-file))))
+                   (append screenshots script-shots) trace trace-file profile?))))
 
-  (define (run-game! game frames input-script record headless? screenshot repl screenshots trace trace-file)
+  (define (run-game! game frames input-script record headless? screenshot repl screenshots trace trace-file
+                     profile?)
     (unless (or (not frames) (and (exact-integer? frames) (>= frames 0)))
       (error 'game-run! "frames: must be a non-negative integer or #f" frames))
     (unless (or (not screenshot) (and (string? screenshot) (> (string-length screenshot) 0)))
       (error 'game-run! "screenshot: must be a file path (a string) or #f" screenshot))
     (let* ((config (current-config game))
            (script (and input-script (scripted-input input-script config)))
-           (watch (make-watch screenshots trace trace-file))
+           (watch (make-watch screenshots trace trace-file
+                              (and profile? (lambda () (game-frame-profile game)))))
            (headless (if (eq? headless? unset) (headless-run? game) (and headless? #t)))
            (shot-box (and screenshot (not headless) (list #f)))
            (owns-sdl (not (sdl-initialized?)))

@@ -13,6 +13,11 @@
 ;;;                         SPEC is WHO:KEY,KEY,... with WHO a type, tag or
 ;;;                         name of the entities traced, or * for all
 ;;;   --trace-file FILE     the trace goes to FILE instead of stdout
+;;;   --profile             every 60 frames, the mean time per frame of the
+;;;                         engine update, update: and drawing over those
+;;;                         60 frames (game-frame-profile), one line on
+;;;                         stdout: "profile: frames A-B engine E ms
+;;;                         update U ms render R ms"
 ;;; Other arguments are the game's own and are left alone. An option
 ;;; without its value, or a value that is not one, is an error naming it.
 ;;;
@@ -74,6 +79,7 @@
               (loop (cdr rest) (cons (cons 'trace (parse-trace-spec (needs-value a rest))) out)))
              ((string=? a "--trace-file")
               (loop (cdr rest) (cons (cons 'trace-file (needs-value a rest)) out)))
+             ((string=? a "--profile") (loop rest (cons (cons 'profile #t) out)))
              (else (loop rest out)))))))
 
   ;; The value of a single option, or default.
@@ -204,18 +210,21 @@
   ;;; A watch: what a run does after each frame runs and is drawn.
 
   (define-record-type watch
-    (%make-watch shots trace port close-port?)
+    (%make-watch shots trace port close-port? profile)
     watch?
     (shots watch-shots watch-shots-set!)      ; pending, sorted by frame
     (trace watch-trace)
     (port watch-port)
-    (close-port? watch-close-port?))
+    (close-port? watch-close-port?)
+    (profile watch-profile))                  ; #f, or a thunk: game-frame-profile
 
   ;; #f when there is nothing to watch, so a plain run pays nothing.
-  (define (make-watch shots trace trace-file)
+  ;; profile: #f, or a thunk answering the means of the last 60 frames
+  ;; (the engine's game-frame-profile of the game run), for --profile.
+  (define (make-watch shots trace trace-file #!optional (profile #f))
     (let ((shots (sort-shots (check-screenshots shots)))
           (trace (check-trace trace)))
-      (and (or (pair? shots) (pair? trace))
+      (and (or (pair? shots) (pair? trace) profile)
            (%make-watch shots trace
                         (if trace-file
                             (handle-exceptions exn
@@ -223,7 +232,8 @@
                                                            ((condition-property-accessor 'exn 'message "") exn)))
                               (open-output-file trace-file))
                             (current-output-port))
-                        (and trace-file #t)))))
+                        (and trace-file #t)
+                        profile))))
 
   (define (sort-shots shots)
     (foldr (lambda (s sorted)
@@ -235,12 +245,26 @@
 
   ;; After frame `frame` ran (update: and the camera included).
   (define (watch-frame-run! w scene frame)
-    (when (and w scene (pair? (watch-trace w)))
-      (for-each (lambda (e)
-                  (let ((keys (traced-keys (watch-trace w) e)))
-                    (when (pair? keys)
-                      (write-line (trace-line frame e keys) (watch-port w)))))
-                (scene-entities scene))))
+    (when w
+      (when (and scene (pair? (watch-trace w)))
+        (for-each (lambda (e)
+                    (let ((keys (traced-keys (watch-trace w) e)))
+                      (when (pair? keys)
+                        (write-line (trace-line frame e keys) (watch-port w)))))
+                  (scene-entities scene)))
+      (when (and (watch-profile w) (= (modulo frame profile-frames) (- profile-frames 1)))
+        (print (profile-line frame ((watch-profile w)))))))
+
+  ;; The frames --profile takes its means over: those the engine's frame
+  ;; profile remembers.
+  (define profile-frames 60)
+
+  ;; The --profile line after frame `frame`, from a game-frame-profile
+  ;; alist; its render mean counts frames run but not (yet) drawn as 0.
+  (define (profile-line frame means)
+    (define (ms part) (/ (round (* 1000 (exact->inexact (cdr (assq part means))))) 1000))
+    (sprintf "profile: frames ~a-~a engine ~a ms update ~a ms render ~a ms"
+             (+ 1 (- frame profile-frames)) frame (ms 'engine) (ms 'update) (ms 'render)))
 
   ;; After frame `frame` was drawn, before the present: the screenshots
   ;; due (at this frame or, when a window skipped drawing it, before).
