@@ -141,6 +141,90 @@ static int ds_position(C_word o, long *n, long *d) {
   return 0;
 }
 
+/* The flonum kernel: a scene without a map, whose entity has a finite
+   flonum among its position, velocities or acceleration (or the tuned
+   gravity is one), the rest small fixnums. Each number is a fixnum or a
+   double, and a sum is taken as CHICKEN's + takes it: two fixnums exactly,
+   else both as doubles, in the readable steps' order, so every double is
+   the one the readable steps make. A sum that is not finite is their
+   error to raise: the entity goes to them. Not inlined into
+   ds_fixnum_motion, whose frame is part of every body's nursery use (see
+   motion.scm). */
+typedef struct { int flo; long n; double d; } ds_num;
+
+static int ds_num_of(C_word o, ds_num *v) {
+  if (DS_SMALL(o)) { v->flo = 0; v->n = C_unfix(o); return 1; }
+  if (!C_immediatep(o) && C_block_header(o) == C_FLONUM_TAG) {
+    double d = C_flonum_magnitude(o);
+    if (d - d != 0.0) return 0;          /* an infinity or a NaN */
+    v->flo = 1; v->d = d; return 1;
+  }
+  return 0;
+}
+
+static ds_num ds_num_add(ds_num a, ds_num b) {
+  ds_num r;
+  if (!a.flo && !b.flo) { r.flo = 0; r.n = a.n + b.n; }
+  else { r.flo = 1; r.d = (a.flo ? a.d : (double)a.n) + (b.flo ? b.d : (double)b.n); }
+  return r;
+}
+
+/* whether the Scheme value o is the number v already: the same fixnum, or
+   a flonum of the same bits (so -0.0 is not 0.0) */
+static int ds_num_is(C_word o, ds_num v) {
+  if (!v.flo) return o == C_fix(v.n);
+  return !C_immediatep(o) && C_block_header(o) == C_FLONUM_TAG &&
+         memcmp(&C_flonum_magnitude(o), &v.d, sizeof(double)) == 0;
+}
+
+/* Puts v in out[slot], or, a double, in fout[slot] with the flonum bit. */
+static int ds_num_put(C_word out, double *fout, int slot, ds_num v, int flonum_bit) {
+  if (!v.flo) { C_set_block_item(out, slot, C_fix(v.n)); return 0; }
+  fout[slot] = v.d;
+  return flonum_bit;
+}
+
+static C_word __attribute__((noinline))
+ds_flonum_motion(C_word out, C_word map, C_word flags_, C_word gravity_,
+                 C_word x_, C_word y_, C_word w_, C_word h_,
+                 C_word vx_, C_word vy_, C_word ay_, C_word on)
+{
+  long flags = C_unfix(flags_);
+  int grav = (flags & DS_GRAVITY) != 0, writes = 0;
+  ds_num x, y, vx, vy0, ay, g, vy, x2, y2;
+  double *fout = (double *)C_srfi_4_vector(C_block_item(out, 8));
+  (void)map;
+  if ((flags & DS_HAS_MAP) || !DS_SIZE(w_) || !DS_SIZE(h_) ||
+      !(ds_num_of(x_, &x) && ds_num_of(y_, &y) && ds_num_of(vx_, &vx) && ds_num_of(vy_, &vy0)) ||
+      (grav && !(ds_num_of(ay_, &ay) && ds_num_of(gravity_, &g))))
+    return C_fix(-1);
+  /* acceleration: an #:ay of fixnum 0 that is present is nothing to consume */
+  int accelerate = grav && !(ay_ == C_fix(0) && (flags & DS_HAS_AY));
+  vy = accelerate ? ds_num_add(vy0, ay) : vy0;
+  if (grav) vy = ds_num_add(vy, g);
+  x2 = ds_num_add(x, vx);
+  y2 = ds_num_add(y, vy);
+  if ((vy.flo && vy.d - vy.d != 0.0) || (x2.flo && x2.d - x2.d != 0.0) ||
+      (y2.flo && y2.d - y2.d != 0.0))
+    return C_fix(-1);
+  if (!((flags & DS_HAS_X) && ds_num_is(x_, x2)))
+    writes |= DS_WRITE_X | ds_num_put(out, fout, 0, x2, DS_X_FLONUM);
+  if (!((flags & DS_HAS_Y) && ds_num_is(y_, y2)))
+    writes |= DS_WRITE_Y | ds_num_put(out, fout, 1, y2, DS_Y_FLONUM);
+  if (grav && !((flags & DS_HAS_VY) && ds_num_is(vy_, vy)))
+    writes |= DS_WRITE_VY | ds_num_put(out, fout, 3, vy, DS_VY_FLONUM);
+  if (accelerate) {                    /* consumed: a fixnum 0 */
+    C_set_block_item(out, 4, C_fix(0));
+    writes |= DS_WRITE_AY;
+  }
+  if ((flags & DS_GROUND) && grav && !((flags & DS_HAS_ON) && on == C_SCHEME_FALSE)) {
+    C_set_block_item(out, 5, C_SCHEME_FALSE);   /* no map, and no solid entity */
+    writes |= DS_WRITE_ON;
+  }
+  C_set_block_item(out, 6, C_fix(writes));   /* for motion.scm's flonum-rewrite */
+  return C_fix(writes);
+}
+
 /* -1 when this entity is not for this code (a number the kernel does not
    take, a non-empty #:skip-pipelines, an unknown mode: DS_NOT_HERE), else
    the keys to write. Velocities are fixnums, so a rational position keeps
@@ -153,12 +237,14 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
 {
   long flags = C_unfix(flags_), g;
   long xn, xd, yn, yd;
+  if ((flags & DS_NOT_HERE) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST))
+    return C_fix(-1);
   /* *gravity* may have been tuned to any number: only a small fixnum is ours */
-  if ((flags & DS_NOT_HERE) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST) ||
-      !(ds_position(x_, &xn, &xd) && ds_position(y_, &yn, &yd) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
+  if (!(ds_position(x_, &xn, &xd) && ds_position(y_, &yn, &yd) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
         DS_SIZE(w_) && DS_SIZE(h_) &&
         (!(flags & DS_GRAVITY) || (DS_SMALL(ay_) && DS_SMALL(gravity_)))))
-    return C_fix(-1);
+    return (flags & DS_HAS_MAP) ? C_fix(-1)
+      : ds_flonum_motion(out, map, flags_, gravity_, x_, y_, w_, h_, vx_, vy_, ay_, on);
   g = C_unfix(gravity_);
   long w = C_unfix(w_), h = C_unfix(h_);
   long vx = C_unfix(vx_), vy0 = C_unfix(vy_), ay = C_unfix(ay_);

@@ -191,6 +191,9 @@
   (define-c-constant write-on DS_WRITE_ON 32)
   (define-c-constant x-ratio DS_X_RATIO 64)
   (define-c-constant y-ratio DS_Y_RATIO 128)
+  (define-c-constant x-flonum DS_X_FLONUM 256)
+  (define-c-constant y-flonum DS_Y_FLONUM 512)
+  (define-c-constant vy-flonum DS_VY_FLONUM 1024)
 
   (define fixnum-motion!
     (foreign-lambda scheme-object "ds_fixnum_motion" scheme-object u8vector scheme-object
@@ -206,6 +209,34 @@
           ((fx= 0 (fxand writes ratio-bit)) (vector-ref out n-slot))
           (else (##core#inline_allocate ("C_a_i_ratnum" 3) (vector-ref out n-slot)
                                         (vector-ref out d-slot)))))
+
+  ;; The flonum kernel's answer (motion.c, a scene without a map): the
+  ;; entity rewritten: the keys to write are out[6] (the kernel's answer,
+  ;; repeated there), the new x, y and vy each a fixnum of out or, with its
+  ;; flonum bit, a double of the f64vector out[8]. It walks the entity
+  ;; again for its pairs, so that the pass calls it with two values.
+  ;; This procedure stays apart from the motion pass, never merged into
+  ;; it: the flonums are made in its own frame, and the pass's frame,
+  ;; which every body of every scene spends of the nursery (CHICKEN's C
+  ;; stack), stays as it was. CHICKEN merges a procedure called from one
+  ;; place into its caller, or inlines it, unless it is assigned and
+  ;; declared not inline, hence the set! below.
+  (declare (not inline flonum-rewrite))
+  (define (flonum-rewrite e out)
+    (let ((writes (vector-ref out 6)) (fout (vector-ref out 8)))
+      (define (answer write-bit flonum-bit slot)
+        (cond ((fx= 0 (fxand writes write-bit)) 'keep)
+              ((fx= 0 (fxand writes flonum-bit)) (vector-ref out slot))
+              (else (f64vector-ref fout slot))))
+      (entity-let e ((xp #:x) (yp #:y) (vxp #:vx) (vyp #:vy) (ayp #:ay) (gp #:gravity?) (onp #:on-ground?))
+        (rewrite-motion e (and gp (cdr gp))
+                        xp (answer write-x x-flonum 0)
+                        yp (answer write-y y-flonum 1)
+                        vxp 'keep               ; no map: nothing stops it
+                        vyp (answer write-vy vy-flonum 3)
+                        ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
+                        onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))))
+  (set! flonum-rewrite flonum-rewrite)
 
   ;; What the C code is given in a scene without a map (it reads neither).
   (define no-grid (make-u8vector 0))
@@ -244,7 +275,7 @@
            ;; an entity's own mode replaces the scene's
            (own-mode-flags (fxand scene-flags (fxnot flag-swept)))
            (gravity *gravity*)
-           (out (make-vector 8 1)))
+           (out (let ((v (make-vector 9 1))) (vector-set! v 8 (make-f64vector 4 0.0)) v)))
       ;; An entity the C code leaves (see above).
       (define (general e)
         (let ((moved (motion-steps scene e dt controls? climbers?)))
@@ -280,7 +311,8 @@
                                                x y w h vx vy ay (and onp (cdr onp)))))
                   (cond ((fx= writes 0) e)
                         ((fx< writes 0) (general e))
-                        ((fx= 0 (fxand writes (fxior x-ratio y-ratio)))
+                        ((fx= 0 (fxand writes (fxior (fxior x-ratio y-ratio)
+                                                     (fxior x-flonum (fxior y-flonum vy-flonum)))))
                          (rewrite-motion e grav
                                          xp (if (fx= 0 (fxand writes write-x)) 'keep (vector-ref out 0))
                                          yp (if (fx= 0 (fxand writes write-y)) 'keep (vector-ref out 1))
@@ -288,6 +320,8 @@
                                          vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
                                          ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
                                          onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))
+                        ((fx= 0 (fxand writes (fxior x-ratio y-ratio)))
+                         (flonum-rewrite e out))
                         (else                   ; a rational position
                          (rewrite-motion e grav
                                          xp (kernel-position out writes write-x x-ratio 0 6)
