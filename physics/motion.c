@@ -141,15 +141,14 @@ static int ds_position(C_word o, long *n, long *d) {
   return 0;
 }
 
-/* The flonum kernel: a scene without a map, whose entity has a finite
-   flonum among its position, velocities or acceleration (or the tuned
-   gravity is one), the rest small fixnums. Each number is a fixnum or a
-   double, and a sum is taken as CHICKEN's + takes it: two fixnums exactly,
-   else both as doubles, in the readable steps' order, so every double is
-   the one the readable steps make. A sum that is not finite is their
-   error to raise: the entity goes to them. Not inlined into
-   ds_fixnum_motion, whose frame is part of every body's nursery use (see
-   motion.scm). */
+/* The flonum kernel, for a scene without a map: an entity the fixnum
+   kernel leaves whose position, velocities, acceleration and gravity are
+   finite flonums or small fixnums. Each number is a fixnum or a double,
+   and a sum is taken as CHICKEN's + takes it: two fixnums exactly, else
+   both as doubles, in the readable steps' order, so every double is the
+   one the readable steps make. A sum that is not finite is their error to
+   raise: the entity goes to them (-1). Not inlined: its frame lasts
+   only as long as the call (see motion.scm's general). */
 typedef struct { int flo; long n; double d; } ds_num;
 
 static int ds_num_of(C_word o, ds_num *v) {
@@ -184,17 +183,15 @@ static int ds_num_put(C_word out, double *fout, int slot, ds_num v, int flonum_b
   return flonum_bit;
 }
 
-static C_word __attribute__((noinline))
-ds_flonum_motion(C_word out, C_word map, C_word flags_, C_word gravity_,
-                 C_word x_, C_word y_, C_word w_, C_word h_,
-                 C_word vx_, C_word vy_, C_word ay_, C_word on)
+static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, double *fout, C_word flags_, C_word gravity_, C_word skips,
+                               C_word x_, C_word y_, C_word w_, C_word h_,
+                               C_word vx_, C_word vy_, C_word ay_, C_word on)
 {
   long flags = C_unfix(flags_);
   int grav = (flags & DS_GRAVITY) != 0, writes = 0;
   ds_num x, y, vx, vy0, ay, g, vy, x2, y2;
-  double *fout = (double *)C_srfi_4_vector(C_block_item(out, 8));
-  (void)map;
-  if ((flags & DS_HAS_MAP) || !DS_SIZE(w_) || !DS_SIZE(h_) ||
+  if ((flags & (DS_HAS_MAP | DS_NOT_HERE)) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST) ||
+      !DS_SIZE(w_) || !DS_SIZE(h_) ||
       !(ds_num_of(x_, &x) && ds_num_of(y_, &y) && ds_num_of(vx_, &vx) && ds_num_of(vy_, &vy0)) ||
       (grav && !(ds_num_of(ay_, &ay) && ds_num_of(gravity_, &g))))
     return C_fix(-1);
@@ -221,7 +218,6 @@ ds_flonum_motion(C_word out, C_word map, C_word flags_, C_word gravity_,
     C_set_block_item(out, 5, C_SCHEME_FALSE);   /* no map, and no solid entity */
     writes |= DS_WRITE_ON;
   }
-  C_set_block_item(out, 6, C_fix(writes));   /* for motion.scm's flonum-rewrite */
   return C_fix(writes);
 }
 
@@ -237,14 +233,12 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
 {
   long flags = C_unfix(flags_), g;
   long xn, xd, yn, yd;
-  if ((flags & DS_NOT_HERE) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST))
-    return C_fix(-1);
   /* *gravity* may have been tuned to any number: only a small fixnum is ours */
-  if (!(ds_position(x_, &xn, &xd) && ds_position(y_, &yn, &yd) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
+  if ((flags & DS_NOT_HERE) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST) ||
+      !(ds_position(x_, &xn, &xd) && ds_position(y_, &yn, &yd) && DS_SMALL(vx_) && DS_SMALL(vy_) &&
         DS_SIZE(w_) && DS_SIZE(h_) &&
         (!(flags & DS_GRAVITY) || (DS_SMALL(ay_) && DS_SMALL(gravity_)))))
-    return (flags & DS_HAS_MAP) ? C_fix(-1)
-      : ds_flonum_motion(out, map, flags_, gravity_, x_, y_, w_, h_, vx_, vy_, ay_, on);
+    return C_fix(-1);
   g = C_unfix(gravity_);
   long w = C_unfix(w_), h = C_unfix(h_);
   long vx = C_unfix(vx_), vy0 = C_unfix(vy_), ay = C_unfix(ay_);

@@ -201,6 +201,13 @@
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object))
 
+  ;; The flonum kernel (motion.c), for scenes without a map: the same
+  ;; arguments but the map's, and fout, where it puts the doubles.
+  (define flonum-motion!
+    (foreign-lambda scheme-object "ds_flonum_motion" scheme-object f64vector scheme-object
+                    scheme-object scheme-object scheme-object scheme-object scheme-object
+                    scheme-object scheme-object scheme-object scheme-object scheme-object))
+
   ;; The kernel's answer for a position: 'keep, out[n-slot], or with the
   ;; ratio bit the rational out[n-slot] / out[d-slot], in lowest terms
   ;; already, so the ratnum is made without a gcd.
@@ -210,33 +217,49 @@
           (else (##core#inline_allocate ("C_a_i_ratnum" 3) (vector-ref out n-slot)
                                         (vector-ref out d-slot)))))
 
-  ;; The flonum kernel's answer (motion.c, a scene without a map): the
-  ;; entity rewritten: the keys to write are out[6] (the kernel's answer,
-  ;; repeated there), the new x, y and vy each a fixnum of out or, with its
-  ;; flonum bit, a double of the f64vector out[8]. It walks the entity
-  ;; again for its pairs, so that the pass calls it with two values.
-  ;; This procedure stays apart from the motion pass, never merged into
-  ;; it: the flonums are made in its own frame, and the pass's frame,
-  ;; which every body of every scene spends of the nursery (CHICKEN's C
-  ;; stack), stays as it was. CHICKEN merges a procedure called from one
-  ;; place into its caller, or inlines it, unless it is assigned and
-  ;; declared not inline, hence the set! below.
-  (declare (not inline flonum-rewrite))
-  (define (flonum-rewrite e out)
-    (let ((writes (vector-ref out 6)) (fout (vector-ref out 8)))
-      (define (answer write-bit flonum-bit slot)
-        (cond ((fx= 0 (fxand writes write-bit)) 'keep)
-              ((fx= 0 (fxand writes flonum-bit)) (vector-ref out slot))
-              (else (f64vector-ref fout slot))))
-      (entity-let e ((xp #:x) (yp #:y) (vxp #:vx) (vyp #:vy) (ayp #:ay) (gp #:gravity?) (onp #:on-ground?))
-        (rewrite-motion e (and gp (cdr gp))
-                        xp (answer write-x x-flonum 0)
-                        yp (answer write-y y-flonum 1)
-                        vxp 'keep               ; no map: nothing stops it
-                        vyp (answer write-vy vy-flonum 3)
-                        ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
-                        onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))))
-  (set! flonum-rewrite flonum-rewrite)
+  ;; (kernel-inputs e (one-way? scene-flags own-mode-flags)
+  ;;                (xp yp vxp vyp ayp onp skips grav x y w h vx vy ay on flags)
+  ;;   body ...)
+  ;; body with what the kernels are given for entity e, read in one walk:
+  ;; the pairs of the motion keys (#f when absent), #:skip-pipelines'
+  ;; value, whether gravity is on, the numbers (0 when absent), the
+  ;; #:on-ground? value and the flags, the scene's bits (first line) joined
+  ;; with the entity's. Written as plain expressions, not nested
+  ;; conditionals, so that CHICKEN makes no closures here (see above).
+  (define-syntax kernel-inputs
+    (syntax-rules ()
+      ((_ e (one-way? scene-flags own-mode-flags)
+          (xp yp vxp vyp ayp onp skips grav x y w h vx vy ay on flags) body ...)
+       (entity-let e ((xp #:x) (yp #:y) (wp #:width) (hp #:height) (vxp #:vx) (vyp #:vy)
+                      (ayp #:ay) (gp #:gravity?) (skipp #:skip-pipelines)
+                      (modep #:collision-mode) (onp #:on-ground?) (dropp #:drop-through?))
+         (let ((grav (and gp (cdr gp)))
+               (x (if xp (cdr xp) 0)) (y (if yp (cdr yp) 0))
+               (w (if wp (cdr wp) 0)) (h (if hp (cdr hp) 0))
+               (vx (if vxp (cdr vxp) 0)) (vy (if vyp (cdr vyp) 0))
+               (ay (if ayp (cdr ayp) 0))
+               (own (and modep (cdr modep))))
+           (let* ((flags (fxior
+                          ;; an unknown mode is the tile steps' error to raise
+                          (fxior (fxior (if own own-mode-flags scene-flags)
+                                        (if (and one-way? dropp (cdr dropp)) flag-drop 0))
+                                 (fxior (if (eq? own 'swept) flag-swept 0)
+                                        (if (memq own '(#f swept discrete)) 0 flag-not-here)))
+                          (fxior (fxior (if grav flag-gravity 0) (if xp flag-x 0))
+                                 (fxior (fxior (if yp flag-y 0) (if vxp flag-vx 0))
+                                        (fxior (if vyp flag-vy 0)
+                                               (fxior (if ayp flag-ay 0) (if onp flag-on 0)))))))
+                  (skips (and skipp (cdr skipp)))
+                  (on (and onp (cdr onp))))
+             body ...))))))
+
+  ;; Whether entity e takes the readable steps whatever its numbers: body
+  ;; controls (when the scene may have them), a ladder climb (likewise).
+  (define-syntax readable-only?
+    (syntax-rules ()
+      ((_ e controls? climbers?)
+       (or (and controls? (or (has-controls? e) (assq #:bounce e)))
+           (and climbers? (climbing? e))))))
 
   ;; What the C code is given in a scene without a map (it reads neither).
   (define no-grid (make-u8vector 0))
@@ -275,44 +298,56 @@
            ;; an entity's own mode replaces the scene's
            (own-mode-flags (fxand scene-flags (fxnot flag-swept)))
            (gravity *gravity*)
-           (out (let ((v (make-vector 9 1))) (vector-set! v 8 (make-f64vector 4 0.0)) v)))
+           (out (make-vector 8 1)))
       ;; An entity the C code leaves (see above).
-      (define (general e)
+      (define (readable e)
         (let ((moved (motion-steps scene e dt controls? climbers?)))
           (if ground? (detect-on-solid scene moved dt) moved)))
+      ;; In a scene without a map, an entity the fixnum kernel leaves is
+      ;; offered to the flonum kernel, unless it takes the readable steps
+      ;; whatever its numbers. It is asked here, apart from the fixnum
+      ;; kernel's path, and reads the entity again: every C frame of that
+      ;; path is part of every body's use of the nursery (CHICKEN's C
+      ;; stack), and each stays as it is for the scenes without flonums
+      ;; (even calling `readable` from the pass, not this, cost S1 16 bytes
+      ;; of nursery per body-frame).
+      (define general
+        (if tm
+            readable
+            (let ((fout (make-f64vector 4 0.0)))
+              (lambda (e)
+               (if (readable-only? e controls? climbers?)
+                (readable e)
+                (kernel-inputs e (#f scene-flags own-mode-flags)
+                               (xp yp vxp vyp ayp onp skips grav x y w h vx vy ay on flags)
+                  (let ((writes (flonum-motion! out fout flags gravity skips x y w h vx vy ay on)))
+                    ;; the new x, y or vy: out's fixnum, or fout's double
+                    (define (answer write-bit flonum-bit slot)
+                      (cond ((fx= 0 (fxand writes write-bit)) 'keep)
+                            ((fx= 0 (fxand writes flonum-bit)) (vector-ref out slot))
+                            (else (f64vector-ref fout slot))))
+                    (cond ((fx= writes 0) e)
+                          ((fx< writes 0) (readable e))
+                          (else
+                           (rewrite-motion e grav
+                                           xp (answer write-x x-flonum 0)
+                                           yp (answer write-y y-flonum 1)
+                                           vxp 'keep ; no map: nothing stops it
+                                           vyp (answer write-vy vy-flonum 3)
+                                           ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
+                                           onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))))))))))
       (if (and tm (not map?))
           general
           (lambda (e)
-           (if (or (and controls? (or (has-controls? e) (assq #:bounce e)))
-                   (and climbers? (climbing? e)))
+           (if (readable-only? e controls? climbers?)
             (general e)
-            (entity-let e ((xp #:x) (yp #:y) (wp #:width) (hp #:height) (vxp #:vx) (vyp #:vy)
-                           (ayp #:ay) (gp #:gravity?) (skipp #:skip-pipelines)
-                           (modep #:collision-mode) (onp #:on-ground?) (dropp #:drop-through?))
-              (let ((grav (and gp (cdr gp)))
-                    (x (if xp (cdr xp) 0)) (y (if yp (cdr yp) 0))
-                    (w (if wp (cdr wp) 0)) (h (if hp (cdr hp) 0))
-                    (vx (if vxp (cdr vxp) 0)) (vy (if vyp (cdr vyp) 0))
-                    (ay (if ayp (cdr ayp) 0))
-                    (own (and modep (cdr modep))))
-                ;; Written as plain expressions, not nested conditionals, so
-                ;; that CHICKEN makes no closures here (see above).
-                (let* ((flags (fxior
-                               ;; an unknown mode is the tile steps' error to raise
-                               (fxior (fxior (if own own-mode-flags scene-flags)
-                                             (if (and one-way? dropp (cdr dropp)) flag-drop 0))
-                                      (fxior (if (eq? own 'swept) flag-swept 0)
-                                             (if (memq own '(#f swept discrete)) 0 flag-not-here)))
-                               (fxior (fxior (if grav flag-gravity 0) (if xp flag-x 0))
-                                      (fxior (fxior (if yp flag-y 0) (if vxp flag-vx 0))
-                                             (fxior (if vyp flag-vy 0)
-                                                    (fxior (if ayp flag-ay 0) (if onp flag-on 0)))))))
-                       (writes (fixnum-motion! out bytes map flags gravity (and skipp (cdr skipp))
-                                               x y w h vx vy ay (and onp (cdr onp)))))
+            (kernel-inputs e (one-way? scene-flags own-mode-flags)
+                           (xp yp vxp vyp ayp onp skips grav x y w h vx vy ay on flags)
+                (let* ((writes (fixnum-motion! out bytes map flags gravity skips
+                                               x y w h vx vy ay on)))
                   (cond ((fx= writes 0) e)
                         ((fx< writes 0) (general e))
-                        ((fx= 0 (fxand writes (fxior (fxior x-ratio y-ratio)
-                                                     (fxior x-flonum (fxior y-flonum vy-flonum)))))
+                        ((fx= 0 (fxand writes (fxior x-ratio y-ratio)))
                          (rewrite-motion e grav
                                          xp (if (fx= 0 (fxand writes write-x)) 'keep (vector-ref out 0))
                                          yp (if (fx= 0 (fxand writes write-y)) 'keep (vector-ref out 1))
@@ -320,8 +355,6 @@
                                          vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
                                          ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
                                          onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))
-                        ((fx= 0 (fxand writes (fxior x-ratio y-ratio)))
-                         (flonum-rewrite e out))
                         (else                   ; a rational position
                          (rewrite-motion e grav
                                          xp (kernel-position out writes write-x x-ratio 0 6)
@@ -329,6 +362,6 @@
                                          vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
                                          vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
                                          ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
-                                         onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5)))))))))))))
+                                         onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))))))))))
 
 )

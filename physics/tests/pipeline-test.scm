@@ -181,6 +181,59 @@
           (let ((e (plist->entity (list #:x 0 #:y 0 #:vx 0 #:vy 0))))
             (eq? e (step-motion scene e 16))))))
 
+;; Without a map, a body at flonum positions takes the flonum kernel
+;; (physics/motion.c), which writes only what changes: a body at rest is
+;; not copied, as a fixnum one is not.
+(test-group "the flonum kernel: scenes without a map"
+  (let ((e (plist->entity (list #:x 1.5 #:y -0.25 #:vx 0 #:vy 0 #:width 8 #:height 8))))
+    (test-assert "a body at rest at flonum positions comes back itself"
+                 (eq? e (step-motion (make-scene) e 16))))
+  (let ((e (plist->entity (list #:x 1.5 #:y 3 #:vx 2 #:vy 0.5 #:gravity? #t #:ay -1))))
+    (test "one frame of a falling body, with acceleration consumed"
+          (list 3.5 (+ 3 (+ (+ 0.5 -1) *gravity*)) 2 (+ (+ 0.5 -1) *gravity*) 0)
+          (let ((moved (step-motion (make-scene) e 16)))
+            (map (lambda (k) (entity-ref moved k)) '(#:x #:y #:vx #:vy #:ay)))))
+  (let ((e (plist->entity (list #:type 'rock #:x 1.5e308 #:y 0 #:vx 1.5e308))))
+    (test "a sum past the largest double is the step's error, with its words"
+          (pl-outcome (lambda () (pl-six-steps (make-scene) e)))
+          (pl-outcome (lambda () (step-motion (make-scene) e 16)))))
+  ;; random bodies of flonums and fixnums (and some rationals and bignums,
+  ;; which go to the readable steps), five frames each
+  (let loop ((k 0) (different 0) (first-difference #f))
+    (if (= k 2000)
+        (begin
+          (test "2000 random bodies, five frames each: the six steps' results" 0 different)
+          (when first-difference (print "pipeline: first difference " first-difference)))
+        (let* ((num (lambda (range)
+                      (case (pl-rand 8)
+                        ((0 1 2) (- (pl-rand (* 2 range)) range))
+                        ((3) (/ (- (pl-rand (* 2 range)) range) 4))
+                        ((4) (* (- (pl-rand 3) 1) (expt 2 70)))
+                        (else (- (/ (pl-rand 100000) 1000.0) (/ range 2.0))))))
+               (pairs (list (and (pl-chance 95) (cons #:x (num 100)))
+                            (and (pl-chance 95) (cons #:y (num 100)))
+                            (and (pl-chance 80) (cons #:width (pl-pick 8 12 0.5)))
+                            (and (pl-chance 80) (cons #:height (pl-pick 8 12 0.5)))
+                            (and (pl-chance 85) (cons #:vx (num 10)))
+                            (and (pl-chance 85) (cons #:vy (num 10)))
+                            (and (pl-chance 50) (cons #:ay (pl-pick 0 0 -10 0.0 -0.0 2.5)))
+                            (and (pl-chance 60) (cons #:gravity? (pl-pick #t #f)))
+                            (and (pl-chance 40) (cons #:on-ground? (pl-pick #t #f)))
+                            (and (pl-chance 5) (cons #:skip-pipelines '(gravity)))))
+               (e (let keep ((ps pairs))
+                    (cond ((null? ps) '())
+                          ((car ps) (cons (car ps) (keep (cdr ps))))
+                          (else (keep (cdr ps))))))
+               (frames (lambda (step)
+                         (pl-outcome (lambda ()
+                                       (let run ((f 0) (e e))
+                                         (if (= f 5) e (run (+ f 1) (step e))))))))
+               (fast (frames (lambda (e) (step-motion (make-scene) e 16))))
+               (slow (frames (lambda (e) (pl-six-steps (make-scene) e)))))
+          (if (equal? fast slow)
+              (loop (+ k 1) different first-difference)
+              (loop (+ k 1) (+ different 1) (or first-difference (list e fast slow))))))))
+
 ;; Fixnum entities take the motion pass's fixnum path: random maps of
 ;; several tile sizes, with their origin anywhere, and bodies anywhere
 ;; (far outside the map too, and around the path's +-2^40 limit, where
