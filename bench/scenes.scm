@@ -286,9 +286,11 @@ static void bench_count_gc(int mode, C_long ms) {
                       movers))))))
 
 ;; Velocity x then y is what the motion pass does for a body without gravity
-;; in a scene without a map: one pass (as engine-pipeline runs it).
+;; in a scene without a map: one pass, as engine-pipeline runs it for these
+;; bodies (solid, so no ground detection in the pass; no body controls, no
+;; climber: nothing to ask each body about).
 (define (s2-step scene method)
-  (let ((scene (let ((move (motion-pass scene 16))) (scene-map-entities scene (lambda (s e) (move e))))))
+  (let ((scene (let ((move (motion-pass scene 16 #f #f #f))) (scene-map-entities scene (lambda (s e) (move e))))))
     (scene-transform-entities scene (lambda (es) (resolve-entity-collisions es method)))))
 
 (define (clamp-axis e pos vel)
