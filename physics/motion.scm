@@ -284,7 +284,9 @@
   ;; entity whose numbers the kernel takes (above), with no
   ;; #:skip-pipelines, then goes through fixnum-motion!; any other one
   ;; (flonums, other rationals, bignums, a NaN, skips, an unknown mode)
-  ;; through motion-steps, the readable steps.
+  ;; through motion-steps, the readable steps, except that in a scene
+  ;; without a map a flonum position is offered to flonum-motion! first
+  ;; (general, below).
   ;; With ground? the pass also does ground detection (step 8), which
   ;; is only right when no entity of the scene is solid: the engine passes
   ;; it then, and only then.
