@@ -208,19 +208,36 @@
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object scheme-object scheme-object scheme-object scheme-object))
 
-  ;; The kernel's answer for a position: 'keep, out[n-slot], or with the
-  ;; ratio bit the rational out[n-slot] / out[d-slot], in lowest terms
-  ;; already, so the ratnum is made without a gcd.
-  (define (kernel-position out writes write-bit ratio-bit n-slot d-slot)
+  ;; A kernel's answer for x, y or vy: 'keep; with the flonum bit the
+  ;; double flonum-out[n-slot]; with the ratio bit the rational out[n-slot] /
+  ;; out[d-slot], in lowest terms already, so the ratnum is made without a
+  ;; gcd; else the fixnum out[n-slot].
+  (define (kernel-number out writes write-bit ratio-bit flonum-bit n-slot d-slot)
     (cond ((fx= 0 (fxand writes write-bit)) 'keep)
+          ((not (fx= 0 (fxand writes flonum-bit))) (f64vector-ref flonum-out n-slot))
           ((fx= 0 (fxand writes ratio-bit)) (vector-ref out n-slot))
           (else (##core#inline_allocate ("C_a_i_ratnum" 3) (vector-ref out n-slot)
                                         (vector-ref out d-slot)))))
 
+  ;; The entity with a kernel's answer written, when a new number must be
+  ;; made (a rational or a flonum). Apart from the pass's walk of the
+  ;; entity, and called from two places there, so that CHICKEN keeps it a
+  ;; procedure of its own: the walk then allocates nothing, and CHICKEN
+  ;; reserves a lambda's allocation on the C stack, the nursery, at every
+  ;; turn of its loops, so every key of every body paid for these numbers.
+  (define (rewrite-made e grav writes out xp yp vxp vyp ayp onp)
+    (rewrite-motion e grav
+                    xp (kernel-number out writes write-x x-ratio x-flonum 0 6)
+                    yp (kernel-number out writes write-y y-ratio y-flonum 1 7)
+                    vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
+                    vyp (kernel-number out writes write-vy 0 vy-flonum 3 3)
+                    ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
+                    onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))
+
   ;; (kernel-inputs e (one-way? scene-flags own-mode-flags)
   ;;                (xp yp vxp vyp ayp onp skips grav x y w h vx vy ay on flags)
   ;;   body ...)
-  ;; body with what the kernels are given for entity e, read in one walk:
+  ;; body with what the kernel is given for entity e, read in one walk:
   ;; the pairs of the motion keys (#f when absent), #:skip-pipelines'
   ;; value, whether gravity is on, the numbers (0 when absent), the
   ;; #:on-ground? value and the flags, the scene's bits (first line) joined
@@ -267,11 +284,6 @@
   ;; third of a percent.
   (define flonum-out (make-f64vector 4 0.0))
 
-  ;; Whether entity e's key holds a flonum.
-  (define-syntax flonum-at?
-    (syntax-rules ()
-      ((_ e key) (let ((p (assq key e))) (and p (flonum? (cdr p)))))))
-
   ;; What the C code is given in a scene without a map (it reads neither).
   (define no-grid (make-u8vector 0))
   (define no-map (vector 0 0 0 0 1 1))
@@ -286,7 +298,7 @@
   ;; (flonums, other rationals, bignums, a NaN, skips, an unknown mode)
   ;; through motion-steps, the readable steps, except that in a scene
   ;; without a map a flonum position is offered to flonum-motion! first
-  ;; (general, below).
+  ;; (refused, above).
   ;; With ground? the pass also does ground detection (step 8), which
   ;; is only right when no entity of the scene is solid: the engine passes
   ;; it then, and only then.
@@ -313,44 +325,9 @@
            (gravity *gravity*)
            (out (make-vector 8 1)))
       ;; An entity the C code leaves (see above).
-      (define (readable e)
+      (define (general e)
         (let ((moved (motion-steps scene e dt controls? climbers?)))
           (if ground? (detect-on-solid scene moved dt) moved)))
-      ;; In a scene without a map, an entity the fixnum kernel leaves is
-      ;; offered to the flonum kernel when its position holds a flonum,
-      ;; unless it takes the readable steps whatever its numbers. It is
-      ;; asked here, apart from the fixnum kernel's path, and reads the
-      ;; entity again: every C frame of that path is part of every body's
-      ;; use of the nursery (CHICKEN's C stack), and each stays as it is
-      ;; for the scenes without flonums (even calling `readable` from the
-      ;; pass's controls branch, not this, cost S1 16 bytes of nursery per
-      ;; body-frame; telling from C why the kernel refused, 16 too).
-      (define general
-        (if tm
-            readable
-            (let ((fout flonum-out))
-              (lambda (e)
-               (if (or (not (or (flonum-at? e #:x) (flonum-at? e #:y)))
-                       (readable-only? e controls? climbers?))
-                (readable e)
-                (kernel-inputs e (#f scene-flags own-mode-flags)
-                               (xp yp vxp vyp ayp onp skips grav x y w h vx vy ay on flags)
-                  (let ((writes (flonum-motion! out fout flags gravity skips x y w h vx vy ay on)))
-                    ;; the new x, y or vy: out's fixnum, or fout's double
-                    (define (answer write-bit flonum-bit slot)
-                      (cond ((fx= 0 (fxand writes write-bit)) 'keep)
-                            ((fx= 0 (fxand writes flonum-bit)) (vector-ref out slot))
-                            (else (f64vector-ref fout slot))))
-                    (cond ((fx= writes 0) e)
-                          ((fx< writes 0) (readable e))
-                          (else
-                           (rewrite-motion e grav
-                                           xp (answer write-x x-flonum 0)
-                                           yp (answer write-y y-flonum 1)
-                                           vxp 'keep ; no map: nothing stops it
-                                           vyp (answer write-vy vy-flonum 3)
-                                           ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
-                                           onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))))))))))
       (if (and tm (not map?))
           general
           (lambda (e)
@@ -361,7 +338,16 @@
                 (let* ((writes (fixnum-motion! out bytes map flags gravity skips
                                                x y w h vx vy ay on)))
                   (cond ((fx= writes 0) e)
-                        ((fx< writes 0) (general e))
+                        ((fx< writes 0)
+                         ;; without a map, the flonum kernel's turn (it
+                         ;; refuses what is not its, at once)
+                         (if (fx= 0 (fxand flags flag-map))
+                             (let ((writes (flonum-motion! out flonum-out flags gravity skips
+                                                           x y w h vx vy ay on)))
+                               (cond ((fx= writes 0) e)
+                                     ((fx< writes 0) (general e))
+                                     (else (rewrite-made e grav writes out xp yp vxp vyp ayp onp))))
+                             (general e)))
                         ((fx= 0 (fxand writes (fxior x-ratio y-ratio)))
                          (rewrite-motion e grav
                                          xp (if (fx= 0 (fxand writes write-x)) 'keep (vector-ref out 0))
@@ -371,12 +357,6 @@
                                          ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
                                          onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))
                         (else                   ; a rational position
-                         (rewrite-motion e grav
-                                         xp (kernel-position out writes write-x x-ratio 0 6)
-                                         yp (kernel-position out writes write-y y-ratio 1 7)
-                                         vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
-                                         vyp (if (fx= 0 (fxand writes write-vy)) 'keep (vector-ref out 3))
-                                         ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
-                                         onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))))))))))
+                         (rewrite-made e grav writes out xp yp vxp vyp ayp onp))))))))))
 
 )
