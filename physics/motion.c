@@ -148,10 +148,14 @@ static int ds_position(C_word o, long *n, long *d) {
    both as doubles, in the readable steps' order, so every double is the
    one the readable steps make. A sum that is not finite is their error to
    raise: the entity goes to them (-1). Not inlined: its frame lasts
-   only as long as the call (see motion.scm's general). */
+   only as long as the call, and is no part of the C frame of the pass's
+   walk (motion.scm's motion-pass), which every body spends of the nursery. */
 typedef struct { int flo; long n; double d; } ds_num;
 
-static int ds_num_of(C_word o, ds_num *v) {
+/* the helpers below are inlined into ds_flonum_motion, their one caller */
+#define DS_INLINE static inline __attribute__((always_inline))
+
+DS_INLINE int ds_num_of(C_word o, ds_num *v) {
   if (DS_SMALL(o)) { v->flo = 0; v->n = C_unfix(o); return 1; }
   if (!C_immediatep(o) && C_block_header(o) == C_FLONUM_TAG) {
     double d = C_flonum_magnitude(o);
@@ -161,7 +165,7 @@ static int ds_num_of(C_word o, ds_num *v) {
   return 0;
 }
 
-static ds_num ds_num_add(ds_num a, ds_num b) {
+DS_INLINE ds_num ds_num_add(ds_num a, ds_num b) {
   ds_num r;
   if (!a.flo && !b.flo) { r.flo = 0; r.n = a.n + b.n; }
   else { r.flo = 1; r.d = (a.flo ? a.d : (double)a.n) + (b.flo ? b.d : (double)b.n); }
@@ -170,20 +174,27 @@ static ds_num ds_num_add(ds_num a, ds_num b) {
 
 /* whether the Scheme value o is the number v already: the same fixnum, or
    a flonum of the same bits (so -0.0 is not 0.0) */
-static int ds_num_is(C_word o, ds_num v) {
+DS_INLINE int ds_num_is(C_word o, ds_num v) {
   if (!v.flo) return o == C_fix(v.n);
   return !C_immediatep(o) && C_block_header(o) == C_FLONUM_TAG &&
          memcmp(&C_flonum_magnitude(o), &v.d, sizeof(double)) == 0;
 }
 
-/* Puts v in out[slot], or, a double, in fout[slot] with the flonum bit. */
-static int ds_num_put(C_word out, double *fout, int slot, ds_num v, int flonum_bit) {
+/* Where the flonum kernel's doubles wait, read right after the call by
+   motion.scm's kernel-number as ds_flonum_out_ref (a new flonum): a C
+   array, not a Scheme vector, so reading one needs no type or bounds
+   check and no lookup of a global. */
+static double ds_flonum_out[4];
+#define ds_flonum_out_ref(ptr, c, slot) C_flonum(ptr, ds_flonum_out[C_unfix(slot)])
+
+/* Puts v in out[slot], or, a double, in ds_flonum_out[slot] with the flonum bit. */
+DS_INLINE int ds_num_put(C_word out, int slot, ds_num v, int flonum_bit) {
   if (!v.flo) { C_set_block_item(out, slot, C_fix(v.n)); return 0; }
-  fout[slot] = v.d;
+  ds_flonum_out[slot] = v.d;
   return flonum_bit;
 }
 
-static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, double *fout, C_word flags_, C_word gravity_, C_word skips,
+static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, C_word flags_, C_word gravity_, C_word skips,
                                C_word x_, C_word y_, C_word w_, C_word h_,
                                C_word vx_, C_word vy_, C_word ay_, C_word on)
 {
@@ -205,11 +216,11 @@ static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, double *fou
       (y2.flo && y2.d - y2.d != 0.0))
     return C_fix(-1);
   if (!((flags & DS_HAS_X) && ds_num_is(x_, x2)))
-    writes |= DS_WRITE_X | ds_num_put(out, fout, 0, x2, DS_X_FLONUM);
+    writes |= DS_WRITE_X | ds_num_put(out, 0, x2, DS_X_FLONUM);
   if (!((flags & DS_HAS_Y) && ds_num_is(y_, y2)))
-    writes |= DS_WRITE_Y | ds_num_put(out, fout, 1, y2, DS_Y_FLONUM);
+    writes |= DS_WRITE_Y | ds_num_put(out, 1, y2, DS_Y_FLONUM);
   if (grav && !((flags & DS_HAS_VY) && ds_num_is(vy_, vy)))
-    writes |= DS_WRITE_VY | ds_num_put(out, fout, 3, vy, DS_VY_FLONUM);
+    writes |= DS_WRITE_VY | ds_num_put(out, 3, vy, DS_VY_FLONUM);
   if (accelerate) {                    /* consumed: a fixnum 0 */
     C_set_block_item(out, 4, C_fix(0));
     writes |= DS_WRITE_AY;

@@ -25,7 +25,7 @@ enum {
   DS_WRITE_X = 1, DS_WRITE_Y = 2, DS_WRITE_VX = 4, DS_WRITE_VY = 8,
   DS_WRITE_AY = 16, DS_WRITE_ON = 32, DS_X_RATIO = 64, DS_Y_RATIO = 128,
   /* the flonum kernel's answers: the new x, y or vy is the double
-     fout[0], fout[1] or fout[3] */
+     ds_flonum_out[0], [1] or [3] (motion.c) */
   DS_X_FLONUM = 256, DS_Y_FLONUM = 512, DS_VY_FLONUM = 1024
 };
 

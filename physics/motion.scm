@@ -202,19 +202,20 @@
                     scheme-object))
 
   ;; The flonum kernel (motion.c), for scenes without a map: the same
-  ;; arguments but the map's, and fout, where it puts the doubles.
+  ;; arguments but the map's.
   (define flonum-motion!
-    (foreign-lambda scheme-object "ds_flonum_motion" scheme-object f64vector scheme-object
+    (foreign-lambda scheme-object "ds_flonum_motion" scheme-object scheme-object
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object scheme-object scheme-object scheme-object scheme-object))
 
   ;; A kernel's answer for x, y or vy: 'keep; with the flonum bit the
-  ;; double flonum-out[n-slot]; with the ratio bit the rational out[n-slot] /
+  ;; double the flonum kernel left in its slot n-slot (motion.c); with the ratio bit the rational out[n-slot] /
   ;; out[d-slot], in lowest terms already, so the ratnum is made without a
   ;; gcd; else the fixnum out[n-slot].
   (define (kernel-number out writes write-bit ratio-bit flonum-bit n-slot d-slot)
     (cond ((fx= 0 (fxand writes write-bit)) 'keep)
-          ((not (fx= 0 (fxand writes flonum-bit))) (f64vector-ref flonum-out n-slot))
+          ((not (fx= 0 (fxand writes flonum-bit)))
+           (##core#inline_allocate ("ds_flonum_out_ref" 4) n-slot))
           ((fx= 0 (fxand writes ratio-bit)) (vector-ref out n-slot))
           (else (##core#inline_allocate ("C_a_i_ratnum" 3) (vector-ref out n-slot)
                                         (vector-ref out d-slot)))))
@@ -278,12 +279,6 @@
        (or (and controls? (or (has-controls? e) (assq #:bounce e)))
            (and climbers? (climbing? e))))))
 
-  ;; Where the flonum kernel puts its doubles, read back right after the
-  ;; call. One for the module: a bytevector made per frame is made in the
-  ;; heap, and brought the collector's work in S2's exact crowd up by a
-  ;; third of a percent.
-  (define flonum-out (make-f64vector 4 0.0))
-
   ;; What the C code is given in a scene without a map (it reads neither).
   (define no-grid (make-u8vector 0))
   (define no-map (vector 0 0 0 0 1 1))
@@ -342,7 +337,7 @@
                          ;; without a map, the flonum kernel's turn (it
                          ;; refuses what is not its, at once)
                          (if (fx= 0 (fxand flags flag-map))
-                             (let ((writes (flonum-motion! out flonum-out flags gravity skips
+                             (let ((writes (flonum-motion! out flags gravity skips
                                                            x y w h vx vy ay on)))
                                (cond ((fx= writes 0) e)
                                      ((fx< writes 0) (general e))
