@@ -12,6 +12,7 @@
           (downstroke body) (downstroke tuning) (downstroke tile-collisions))
 
   (foreign-declare "#include \"physics/body.h\"")
+  (foreign-declare "#include \"physics/contacts.c\"")
 
   ;;; Standing on things
 
@@ -126,15 +127,21 @@
            (or (>= f1 (+ f2 1 s2)) (>= f2 (+ f1 1 s1))))))
 
   ;; Strict overlap: rectangles that only share an edge do not overlap.
+  ;; Boxes of fixnums and flonums are compared in C (contacts.c), with
+  ;; exactly the answer of the comparisons below: these make a flonum for
+  ;; each sum of a flonum, four new objects in the nursery a pair.
   ;; Exact rationals (bodies pushed apart by halves) make each comparison
   ;; a multiplication of big integers, so boxes at least a pixel apart
   ;; are told apart first by the integer parts of their coordinates.
   ;; Inline for the pair pass; aabb-overlap? is the same as a procedure.
   (define-inline (boxes-overlap? x1 y1 w1 h1 x2 y2 w2 h2)
-    (and (not (apart-on-axis? x1 w1 x2 w2))
-         (not (apart-on-axis? y1 h1 y2 h2))
-         (< x1 (+ x2 w2)) (< x2 (+ x1 w1))
-         (< y1 (+ y2 h2)) (< y2 (+ y1 h1))))
+    (let ((fast (##core#inline "ds_boxes_overlap" x1 y1 w1 h1 x2 y2 w2 h2)))
+      (if (eq? fast -1)
+          (and (not (apart-on-axis? x1 w1 x2 w2))
+               (not (apart-on-axis? y1 h1 y2 h2))
+               (< x1 (+ x2 w2)) (< x2 (+ x1 w1))
+               (< y1 (+ y2 h2)) (< y2 (+ y1 h1)))
+          (eq? fast 1))))
 
   (define (aabb-overlap? x1 y1 w1 h1 x2 y2 w2 h2)
     (boxes-overlap? x1 y1 w1 h1 x2 y2 w2 h2))

@@ -2,7 +2,7 @@
 ;;; section of docs/physics.org whose rule it checks ("The pipeline: ..."),
 ;;; then the step. Integer inputs, exact expected values.
 
-(import scheme (chicken base) (chicken string) (chicken format) (chicken condition)
+(import scheme (chicken base) (chicken string) (chicken format) (chicken condition) (chicken fixnum)
         (downstroke test) (downstroke entity) (downstroke tilemap)
         (downstroke scene) (downstroke physics) (downstroke pipeline) srfi-4)
 
@@ -198,7 +198,52 @@
                (not (aabb-overlap? -1/2 0 8 1 -35/4 0 8 1)))
   (test-assert "rationals far apart on y only" (not (aabb-overlap? 1/3 1/3 8 8 1/3 100/3 8 8)))
   (test-assert "a rational and an integer overlapping" (aabb-overlap? 7/2 0 1 1 3 0 1 1))
-  (test-assert "apart on y" (not (aabb-overlap? 0 0 10 10 0 20 10 10))))
+  (test-assert "apart on y" (not (aabb-overlap? 0 0 10 10 0 20 10 10)))
+  ;; Boxes of fixnums and flonums are compared in C (physics/contacts.c):
+  ;; its answer is the four comparisons' on random boxes of every kind of
+  ;; number, near the edges where doubles stop holding integers exactly
+  ;; (2^52, 2^53), the largest fixnums, bignums, rationals, the largest
+  ;; and smallest doubles, -0.0, infinities and NaN.
+  (let* ((seed 2903)
+         (rand (lambda (n)
+                 (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648))
+                 (modulo (quotient seed 7) n)))
+         (pick (lambda (xs) (list-ref xs (rand (length xs)))))
+         (number (lambda ()
+                   (case (rand 10)
+                     ((0 1 2) (- (rand 41) 20))
+                     ((3 4) (- (/ (rand 4001) 100.0) 20.0))
+                     ((5) (+ (pick (list (expt 2 52) (- (expt 2 52)) (expt 2 53) (- (expt 2 53))
+                                         most-positive-fixnum most-negative-fixnum))
+                             (- (rand 5) 2)))
+                     ((6) (pick (list (exact->inexact (expt 2 52)) (exact->inexact (expt 2 53))
+                                      (+ (exact->inexact (expt 2 53)) 2.0) -0.0 4.9e-324
+                                      1.7e308 -1.7e308 +inf.0 -inf.0 +nan.0)))
+                     ((7) (/ (- (rand 81) 40) (pick '(2 3 4 1024))))
+                     ((8) (* (- (rand 3) 1) (+ (expt 2 70) (rand 3))))
+                     (else (rand 12)))))
+         ;; mostly a box's size, now and then any number
+         (size (lambda () (if (< (rand 4) 3) (+ 1 (rand 12)) (number))))
+         (readable (lambda (x1 y1 w1 h1 x2 y2 w2 h2)
+                     (and (< x1 (+ x2 w2)) (< x2 (+ x1 w1)) (< y1 (+ y2 h2)) (< y2 (+ y1 h1))))))
+    (let loop ((k 0) (different 0) (overlapping 0) (first #f))
+      (if (= k 20000)
+          (begin
+            (test "20000 random pairs of boxes: the four comparisons' answer" 0 different)
+            (test-assert "... of which some overlap" (> overlapping 1000))
+            (when first (print "aabb-overlap?: first difference " first)))
+          (let* ((x1 (number)) (y1 (number)) (w1 (size)) (h1 (size))
+                 ;; the second box often near the first
+                 (near (lambda (v) (if (and (< (rand 3) 2) (real? v) (< (abs v) 1e15) (= v v))
+                                       (+ v (- (rand 21) 10))
+                                       (number))))
+                 (x2 (near x1)) (y2 (near y1)) (w2 (size)) (h2 (size))
+                 (fast (aabb-overlap? x1 y1 w1 h1 x2 y2 w2 h2))
+                 (slow (readable x1 y1 w1 h1 x2 y2 w2 h2)))
+            (loop (+ k 1)
+                  (if (eq? fast slow) different (+ different 1))
+                  (if slow (+ overlapping 1) overlapping)
+                  (or first (and (not (eq? fast slow)) (list x1 y1 w1 h1 x2 y2 w2 h2)))))))))
 
 (test-group "Solid entities: resolve-entity-collisions"
   (define (box x y . more) (apply ent #:solid? #t #:x x #:y y #:width 10 #:height 10 more))

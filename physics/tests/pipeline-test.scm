@@ -11,8 +11,7 @@
 ;;; skip lists, per-entity collision modes, solids, groups, tweens,
 ;;; animations, and climbers on maps with ladders.
 
-(import scheme (chicken base) (chicken condition) (chicken format) (chicken file) (chicken process)
-        srfi-4 (downstroke test)
+(import scheme (chicken base) (chicken condition) (chicken format) srfi-4 (downstroke test)
         (downstroke entity) (downstroke tilemap) (downstroke scene) (downstroke physics)
         (downstroke tween) (downstroke animation) (downstroke pipeline) (downstroke particles))
 
@@ -238,48 +237,6 @@
           (if (equal? fast slow)
               (loop (+ k 1) different first-difference)
               (loop (+ k 1) (+ different 1) (or first-difference (list e fast slow))))))))
-
-;; What the motion pass uses of the nursery, CHICKEN's C stack, where
-;; every call's frame and every new object goes until a minor collection
-;; (docs/performance.org, "What a body-frame allocates"): read from the
-;; stack pointer around one call by a probe compiled here. The pass's walk
-;; of an entity is a loop in one C function, and CHICKEN reserves a
-;; function's allocation at each turn of its loops: a pass that allocates
-;; in that function pays for it at every key of every body.
-(test-group "the motion pass's walk of an entity uses no nursery per key"
-  (let* ((src (sprintf "/tmp/downstroke-probe-~a.scm" (current-process-id)))
-         (so (sprintf "/tmp/downstroke-probe-~a.so" (current-process-id))))
-    (with-output-to-file src
-      (lambda ()
-        (write '(import scheme (chicken base) (chicken foreign) (chicken gc)))
-        (write '(define stack-address
-                  (foreign-lambda* unsigned-long () "C_return((unsigned long)C_stack_pointer);")))
-        ;; the bytes of C stack (proc arg) takes, after a minor collection
-        ;; has emptied it (#f if one came in between)
-        (write '(define (nursery-used proc arg)
-                  (gc #f)
-                  (let* ((before (stack-address)) (result (proc arg)) (after (stack-address)))
-                    (and (< after before) (- before after)))))))
-    (system (sprintf "csc -s -O3 ~a -o ~a" src so))
-    (load so)
-    (let ((move (motion-pass (make-scene) 16 #f #f #f))
-          ;; a moving body, with n more keys after its own
-          (body (lambda (x n)
-                  (append (list (cons #:x x) (cons #:y x) (cons #:width 8) (cons #:height 8)
-                                (cons #:vx 1) (cons #:vy -1) (cons #:solid? #t))
-                          (let more ((k 0))
-                            (if (= k n) '() (cons (cons (list-ref '(#:tags #:type #:hp #:score) (modulo k 4)) k) (more (+ k 1)))))))))
-      (for-each (lambda (x kind)
-                  (test (sprintf "a body at ~a positions: 20 more keys, the same bytes" kind) #t
-                        (let ((few (nursery-used move (body x 0)))
-                              (many (nursery-used move (body x 20))))
-                          (and few many (= few many)))))
-                (list 10 21/2 10.5)
-                '("fixnum" "rational" "flonum"))
-      (test "... and each moved as the six steps move it"
-            (map (lambda (x) (pl-six-steps (make-scene) (body x 20))) (list 10 21/2 10.5))
-            (map (lambda (x) (move (body x 20))) (list 10 21/2 10.5))))
-    (delete-file* src) (delete-file* so)))
 
 ;; Fixnum entities take the motion pass's fixnum path: random maps of
 ;; several tile sizes, with their origin anywhere, and bodies anywhere

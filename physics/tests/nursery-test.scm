@@ -1,0 +1,81 @@
+;;; What the physics' hot paths use of the nursery.
+;;;
+;;; CHICKEN's nursery is its C stack: every call's C frame and every new
+;;; object goes there until a minor collection empties it, so the bytes a
+;;; call leaves on the stack are what it allocates (docs/performance.org,
+;;; "What a body-frame allocates"). A probe compiled here reads the stack
+;;; pointer around one call, made from compiled code, after a minor
+;;; collection has emptied the nursery. The assertions compare two calls
+;;; of the same code, so they hold whatever C compiler made the library.
+
+(import scheme (chicken base) (chicken format) (chicken file) (chicken process)
+        (downstroke test) (downstroke entity) (downstroke scene) (downstroke physics))
+
+;; Random bodies are not what this suite is about.
+(scene-checks #f)
+
+(define probe-source (sprintf "/tmp/downstroke-nursery-~a.scm" (current-process-id)))
+(define probe-library (sprintf "/tmp/downstroke-nursery-~a.so" (current-process-id)))
+(with-output-to-file probe-source
+  (lambda ()
+    (write '(import scheme (chicken base) (chicken foreign) (chicken gc)))
+    (write '(define stack-address
+              (foreign-lambda* unsigned-long () "C_return((unsigned long)C_stack_pointer);")))
+    ;; the bytes of C stack (apply proc args) leaves, or #f when a minor
+    ;; collection came in between
+    (write '(define (nursery-used proc args)
+              (gc #f)
+              (let* ((before (stack-address)) (result (apply proc args)) (after (stack-address)))
+                (and (< after before) (- before after)))))))
+(system (sprintf "csc -s -O3 ~a -o ~a" probe-source probe-library))
+(load probe-library)
+(delete-file* probe-source)
+(delete-file* probe-library)
+
+;; The pass's walk of an entity is a loop in one C function, and CHICKEN
+;; reserves a function's allocation at each turn of its loops: a pass
+;; that made new numbers in that function paid for them at every key of
+;; every body (64 bytes a key, before physics/motion.scm's rewrite-made).
+(test-group "the motion pass's walk of an entity uses no nursery per key"
+  (let ((move (motion-pass (make-scene) 16 #f #f #f))
+        ;; a moving body, with n more keys after its own
+        (body (lambda (x n)
+                (append (list (cons #:x x) (cons #:y x) (cons #:width 8) (cons #:height 8)
+                              (cons #:vx 1) (cons #:vy -1) (cons #:solid? #t))
+                        (let more ((k 0))
+                          (if (= k n)
+                              '()
+                              (cons (cons (list-ref '(#:tags #:type #:hp #:score) (modulo k 4)) k)
+                                    (more (+ k 1)))))))))
+    (for-each (lambda (x kind)
+                (test (sprintf "a body at ~a positions: 20 more keys, the same bytes" kind) #t
+                      (let ((few (nursery-used move (list (body x 0))))
+                            (many (nursery-used move (list (body x 20)))))
+                        (and few many (= few many)))))
+              (list 10 21/2 10.5)
+              '("fixnum" "rational" "flonum"))
+    (test "... and each body moved by one velocity step on each axis"
+          (map (lambda (x) (list (+ x 1) (- x 1))) (list 10 21/2 10.5))
+          (map (lambda (x)
+                 (let ((moved (move (body x 20))))
+                   (list (entity-ref moved #:x) (entity-ref moved #:y))))
+               (list 10 21/2 10.5)))))
+
+;; Two boxes of fixnums or flonums are compared by one C function
+;; (physics/contacts.c). The comparisons in Scheme, which rational boxes
+;; still take, go through a chain of continuations, each a C frame left on
+;; the stack, even for their quickest answer (boxes told apart by the
+;; integer parts of their coordinates); the C call leaves less than half
+;; of that (on 591b184, fixnum and flonum boxes took 2,128 bytes here and
+;; rational ones 2,560).
+(test-group "the pair test of two boxes of fixnums or flonums is one C call"
+  (let ((scheme (nursery-used aabb-overlap? (list 21/2 21/2 8 8 61/2 61/2 8 8))))
+    (for-each (lambda (a b kind)
+                (test (sprintf "boxes at ~a positions: less than half the bytes" kind) #t
+                      (let ((used (nursery-used aabb-overlap? (list a a 8 8 b b 8 8))))
+                        (and used scheme (< (* 2 used) scheme)))))
+              (list 10 10.5 10 10.5)
+              (list 14 14.5 30 30.5)
+              '("fixnum, overlapping" "flonum, overlapping" "fixnum, apart" "flonum, apart"))))
+
+(test-exit)
