@@ -26,14 +26,22 @@ static C_word ds_cell(C_word v, C_word w, C_word size, int *ok) {
   if (!C_fitsinfixnump(c)) *ok = 0;
   return c;
 }
+/* Cells of flonum coordinates are taken below this magnitude: within the
+   fixnums, and where a double still tells integers apart. */
+#define DS_CELL_LIMIT ((double)C_MOST_POSITIVE_FIXNUM < 1e15 ? (double)C_MOST_POSITIVE_FIXNUM : 1e15)
 /* A flonum coordinate's cell, with the operations of broadphase.scm's
    cell-of and end-cell on a flonum, in the same order, so the same
    doubles: floor((v + w) / size), v + w only when w is not 0 (Scheme adds
-   0 too, which changes no double but -0.0, whose floor is the same) */
+   0 too, which changes no double but -0.0, whose floor is the same). The
+   floor is the conversion to an integer (towards zero), one less for a
+   negative non-integer: no call, and a double out of range (or a NaN)
+   is never converted, which C leaves undefined. */
 static C_word ds_flonum_cell(double v, C_word w, C_word size, int *ok) {
-  double c = floor((w == 0 ? v : v + (double)w) / (double)size);
-  if (!(c > -1e15 && c < 1e15) || !C_fitsinfixnump((C_word)c)) { *ok = 0; return 0; }
-  return (C_word)c;
+  double q = (w == 0 ? v : v + (double)w) / (double)size;
+  C_word c;
+  if (!(q > -DS_CELL_LIMIT && q < DS_CELL_LIMIT)) { *ok = 0; return 0; }
+  c = (C_word)q;
+  return (double)c > q ? c - 1 : c;
 }
 /* the cell of coordinate v (a fixnum, a rational of fixnums or a flonum)
    plus the integer w */

@@ -13,7 +13,7 @@
 /* *d = the number o, when it is a fixnum below DS_EXACT_DOUBLE or a
    finite flonum; 0 for anything else (a rational, a bignum, not a
    number, an infinity, a NaN). */
-static inline int ds_overlap_real(C_word o, double *d) {
+static inline __attribute__((always_inline)) int ds_overlap_real(C_word o, double *d) {
   if (o & C_FIXNUM_BIT) {
     C_word n = C_unfix(o);
     *d = (double)n;

@@ -231,7 +231,7 @@
                     xp (kernel-number out writes write-x x-ratio x-flonum 0 6)
                     yp (kernel-number out writes write-y y-ratio y-flonum 1 7)
                     vxp (if (fx= 0 (fxand writes write-vx)) 'keep (vector-ref out 2))
-                    vyp (kernel-number out writes write-vy 0 vy-flonum 3 3)
+                    vyp (if (fx= 0 (fxand writes write-vy)) 'keep (kernel-number out writes write-vy 0 vy-flonum 3 3))
                     ayp (if (fx= 0 (fxand writes write-ay)) 'keep (vector-ref out 4))
                     onp (if (fx= 0 (fxand writes write-on)) 'keep (vector-ref out 5))))
 

@@ -1,6 +1,6 @@
 ;;; The spatial hash gives exactly the all-pairs result, every frame.
 
-(import scheme (chicken base) (downstroke test) (downstroke entity)
+(import scheme (chicken base) (chicken format) (downstroke test) (downstroke entity)
         (downstroke scene) (downstroke physics))
 
 (define bp-seed 7)
@@ -58,6 +58,17 @@
                                   (let ((x (entity-ref e #:x)) (y (entity-ref e #:y)))
                                     (entity-set* e #:x (- (* 1.0 x) 200.25) #:y (- y 200 (* 1e-13 (bp-rand 3))))))
                                 es))))
+  ;; far out: cells about 1e15 (where C's cells stop and Scheme's take
+  ;; over) and past every fixnum (1e300)
+  (for-each (lambda (offset)
+              (test (sprintf "60 bodies at flonum positions about ~a, 20 frames" offset) 0
+                    (bp-compare-with 60 300 20
+                                     (lambda (es)
+                                       (map (lambda (e)
+                                              (entity-set* e #:x (+ offset (entity-ref e #:x))
+                                                           #:y (- (entity-ref e #:y) offset)))
+                                            es)))))
+            '(1.6e16 3.2e16 1e300))
   (let ((es (bp-crowd 300 250)))
     (test-assert "the crowd really collides"
                  (not (equal? es (resolve-entity-collisions es 'all-pairs)))))
