@@ -137,11 +137,15 @@
   (define-inline (boxes-overlap? x1 y1 w1 h1 x2 y2 w2 h2)
     (let ((fast (##core#inline "ds_boxes_overlap" x1 y1 w1 h1 x2 y2 w2 h2)))
       (if (eq? fast -1)
-          (and (not (apart-on-axis? x1 w1 x2 w2))
-               (not (apart-on-axis? y1 h1 y2 h2))
-               (< x1 (+ x2 w2)) (< x2 (+ x1 w1))
-               (< y1 (+ y2 h2)) (< y2 (+ y1 h1)))
+          (exact-boxes-overlap? x1 y1 w1 h1 x2 y2 w2 h2)
           (eq? fast 1))))
+
+  ;; The comparisons in Scheme, for any numbers.
+  (define-inline (exact-boxes-overlap? x1 y1 w1 h1 x2 y2 w2 h2)
+    (and (not (apart-on-axis? x1 w1 x2 w2))
+         (not (apart-on-axis? y1 h1 y2 h2))
+         (< x1 (+ x2 w2)) (< x2 (+ x1 w1))
+         (< y1 (+ y2 h2)) (< y2 (+ y1 h1))))
 
   (define (aabb-overlap? x1 y1 w1 h1 x2 y2 w2 h2)
     (boxes-overlap? x1 y1 w1 h1 x2 y2 w2 h2))
@@ -311,19 +315,40 @@
 
   ;; resolve-pair for two entities known to collide (solid, not skipping):
   ;; the pass below checks that once per entity, not once per pair.
+  ;; The C test of the two boxes (contacts.c) answers only for numbers
+  ;; that are fixnums or finite flonums, which let-numbers would let
+  ;; through: the numbers are checked (a call each, and an error naming
+  ;; the entity and the key for a bad one, as let-numbers raises it) only
+  ;; when it does not answer.
   (define (resolve-colliding-pair a b)
-    (let-numbers a ((ax #:x) (ay #:y) (aw #:width) (ah #:height))
-      (let-numbers b ((bx #:x) (by #:y) (bw #:width) (bh #:height))
-        (if (boxes-overlap? ax ay aw ah bx by bw bh)
-            (let ((a-fixed (flag a #:immovable?))
-                  (b-fixed (flag b #:immovable?)))
-              (cond ((flag a #:one-way?) (if (or b-fixed (flag b #:one-way?)) (values a b) (values a (land-on-one-way b a))))
-                    ((flag b #:one-way?) (if a-fixed (values a b) (values (land-on-one-way a b) b)))
-                    ((and a-fixed b-fixed) (values a b))
-                    (a-fixed (values a (push-off b a #t)))
-                    (b-fixed (values (push-off a b #f) b))
-                    (else (push-apart a b))))
-            (values a b)))))
+    (define-syntax box-number
+      (syntax-rules () ((_ e key) (let ((p (assq key e))) (if p (cdr p) 0)))))
+    (define-syntax plain?
+      (syntax-rules () ((_ v ...) (eq? (fxand* (plain-number-bit v) ...) 1))))
+    (let ((ax (box-number a #:x)) (ay (box-number a #:y))
+          (aw (box-number a #:width)) (ah (box-number a #:height))
+          (bx (box-number b #:x)) (by (box-number b #:y))
+          (bw (box-number b #:width)) (bh (box-number b #:height)))
+      (let ((fast (##core#inline "ds_boxes_overlap" ax ay aw ah bx by bw bh)))
+        (cond ((eq? fast 1) (collide a b))
+              ((eq? fast 0) (values a b))
+              ((not (plain? ax ay aw ah))
+               (reject-numbers a (list #:x #:y #:width #:height) (list ax ay aw ah)))
+              ((not (plain? bx by bw bh))
+               (reject-numbers b (list #:x #:y #:width #:height) (list bx by bw bh)))
+              ((exact-boxes-overlap? ax ay aw ah bx by bw bh) (collide a b))
+              (else (values a b))))))
+
+  ;; Two colliding entities whose boxes overlap.
+  (define (collide a b)
+    (let ((a-fixed (flag a #:immovable?))
+          (b-fixed (flag b #:immovable?)))
+      (cond ((flag a #:one-way?) (if (or b-fixed (flag b #:one-way?)) (values a b) (values a (land-on-one-way b a))))
+            ((flag b #:one-way?) (if a-fixed (values a b) (values (land-on-one-way a b) b)))
+            ((and a-fixed b-fixed) (values a b))
+            (a-fixed (values a (push-off b a #t)))
+            (b-fixed (values (push-off a b #f) b))
+            (else (push-apart a b)))))
 
   ;; All pairs i < j in list order; each pair sees the positions left by the
   ;; pairs before it. Only entities that collide take part, so a scene with

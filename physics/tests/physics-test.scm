@@ -248,6 +248,23 @@
 (test-group "Solid entities: resolve-entity-collisions"
   (define (box x y . more) (apply ent #:solid? #t #:x x #:y y #:width 10 #:height 10 more))
   (define (pair-result a b) (let-values (((a b) (resolve-pair a b))) (list a b)))
+  ;; the pair's C test (physics/contacts.c) leaves any other number to the
+  ;; checks, whose error names the entity and the key, the first entity's
+  ;; first
+  (define (pair-error a b)
+    (handle-exceptions exn (error-text exn) (pair-result a b) "no error"))
+  (define (raw type x y w h)
+    (list (cons #:type type) (cons #:solid? #t) (cons #:x x) (cons #:y y) (cons #:width w) (cons #:height h)))
+  (for-each (lambda (a b words)
+              (test-assert (sprintf "a bad number in a pair: ~a" words)
+                           (let ((text (pair-error a b)))
+                             (substring-index words text))))
+            (list (raw 'a +nan.0 0 10 10) (raw 'a 0 0 10 10) (raw 'a 1/2 'y 10 10)
+                  (raw 'a 0 0 10 +inf.0) (raw 'a 1e308 0 -inf.0 10))
+            (list (raw 'b 1 1 10 10) (raw 'b 1.5 -inf.0 10 10) (raw 'b 1 +nan.0 10 10)
+                  (raw 'b 1/3 0 'w 10) (raw 'b +nan.0 0 10 10))
+            '("entity a: #:x is +nan.0" "entity b: #:y is -inf.0" "entity a: #:y is y"
+              "entity a: #:height is +inf.0" "entity a: #:width is -inf.0"))
   (let ((r (pair-result (box 0 0) (box 6 2))))
     (test "neither immovable: half the overlap each along x (the shallow axis)"
           '((-2 0 -1) (8 2 1))
