@@ -209,9 +209,10 @@
                     scheme-object scheme-object scheme-object scheme-object scheme-object))
 
   ;; A kernel's answer for x, y or vy: 'keep; with the flonum bit the
-  ;; double the flonum kernel left in its slot n-slot (motion.c); with the ratio bit the rational out[n-slot] /
-  ;; out[d-slot], in lowest terms already, so the ratnum is made without a
-  ;; gcd; else the fixnum out[n-slot].
+  ;; double the flonum kernel left in its slot n-slot (motion.c); with the
+  ;; ratio bit the rational out[n-slot] / out[d-slot], in lowest terms
+  ;; already, so the ratnum is made without a gcd; else the fixnum
+  ;; out[n-slot].
   (define (kernel-number out writes write-bit ratio-bit flonum-bit n-slot d-slot)
     (cond ((fx= 0 (fxand writes write-bit)) 'keep)
           ((not (fx= 0 (fxand writes flonum-bit)))
@@ -292,8 +293,8 @@
   ;; #:skip-pipelines, then goes through fixnum-motion!; any other one
   ;; (flonums, other rationals, bignums, a NaN, skips, an unknown mode)
   ;; through motion-steps, the readable steps, except that in a scene
-  ;; without a map a flonum position is offered to flonum-motion! first
-  ;; (refused, above).
+  ;; without a map one the fixnum kernel refuses is offered to
+  ;; flonum-motion! first, with what the same walk read.
   ;; With ground? the pass also does ground detection (step 8), which
   ;; is only right when no entity of the scene is solid: the engine passes
   ;; it then, and only then.
