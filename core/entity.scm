@@ -13,7 +13,8 @@
    make-entity plist->entity entity->plist as-entity entity?
    entity-type entity-tags entity-has-tag? entity-label
    entity-skips-pipeline? define-pipeline
-   entity-number check-entity-number)
+   entity-number check-entity-number
+   entity-ref/scheme entity-set/scheme entity-set*/scheme)
 
   (import scheme (chicken base) (chicken keyword) (chicken format) (chicken fixnum) (chicken foreign))
 
