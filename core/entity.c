@@ -18,6 +18,8 @@
 /* entity-set* settings taken here (a bit each); more are the Scheme's. */
 #define DS_ENTITY_MAX_SETTINGS 16
 
+#include "core/entity.h"
+
 #define DS_PAIRP(x) (!C_immediatep(x) && C_block_header(x) == C_PAIR_TAG)
 
 /* The closure's Scheme definition, called with the same arguments. */
@@ -78,30 +80,34 @@ static void C_ccall ds_entity_set(C_word c, C_word *av) {
 static void C_ccall ds_entity_set_star(C_word c, C_word *av) C_noret;
 static void C_ccall ds_entity_set_star(C_word c, C_word *av) {
   C_word e, ps, p, q, k, head, last, cell, tail, *a;
-  int m, i, j, n, changed = -1, absent, setting[DS_ENTITY_MAX_SETTINGS];
-  unsigned int held = 0;
+  int m, i, j, n, changed = -1, absent = 0;
+  int last_of[DS_ENTITY_MAX_SETTINGS], at[DS_ENTITY_MAX_SETTINGS], later[DS_ENTITY_MAX_SETTINGS];
+  C_uword keymask = 0;
   if (c < 3 || (c - 3) % 2 != 0 || (m = (c - 3) / 2) > DS_ENTITY_MAX_SETTINGS) ds_entity_scheme(c, av);
   e = av[2];
-  /* setting[i]: the index of the last setting of setting i's key */
+  /* last_of[i]: the last setting of setting i's key; later[i]: 1 when an
+     earlier setting has the same key; at[i]: where e holds it (-1: not) */
   for (i = 0; i < m; i++) {
-    setting[i] = i;
-    for (j = i + 1; j < m; j++) if (av[3 + 2 * j] == av[3 + 2 * i]) setting[i] = j;
+    last_of[i] = i; later[i] = 0; at[i] = -1;
+    keymask |= DS_KEY_BIT(av[3 + 2 * i]);
   }
-  /* the walk: which keys e holds, and the last pair whose value changes */
+  for (i = 0; i < m; i++)
+    for (j = i + 1; j < m; j++)
+      if (av[3 + 2 * j] == av[3 + 2 * i]) { last_of[i] = j; later[j] = 1; }
+  /* the walk: where e holds each key, and the last pair whose value changes */
   for (ps = e, n = 0; ps != C_SCHEME_END_OF_LIST; ps = C_u_i_cdr(ps), n++) {
     if (n == DS_ENTITY_MAX_COPY || !DS_PAIRP(ps) || !DS_PAIRP(p = C_u_i_car(ps)))
       ds_entity_scheme(c, av);
     k = C_u_i_car(p);
-    for (i = 0; i < m; i++)
-      if (av[3 + 2 * i] == k) {
-        i = setting[i];
-        if (held & (1u << i)) ds_entity_scheme(c, av);    /* e holds k twice */
-        held |= 1u << i;
-        if (C_u_i_cdr(p) != av[4 + 2 * i]) changed = n;
-        break;
-      }
+    if (!(keymask & DS_KEY_BIT(k))) continue;
+    for (i = 0; i < m && av[3 + 2 * i] != k; i++);
+    if (i == m) continue;
+    i = last_of[i];
+    if (at[i] >= 0) ds_entity_scheme(c, av);             /* e holds k twice */
+    at[i] = n;
+    if (C_u_i_cdr(p) != av[4 + 2 * i]) changed = n;
   }
-  for (i = 0, absent = 0; i < m; i++) if (setting[i] == i && !(held & (1u << i))) absent++;
+  for (i = 0; i < m; i++) if (!later[i] && at[last_of[i]] < 0) absent++;
   if (!C_demand(3 * (changed + 1) + 3 * m + 6 * absent))
     C_save_and_reclaim((void *)ds_entity_set_star, c, av);
   a = C_alloc(3 * (changed + 1) + 3 * m + 6 * absent);
@@ -110,8 +116,7 @@ static void C_ccall ds_entity_set_star(C_word c, C_word *av) {
   for (q = e, n = 0; n <= changed; q = C_u_i_cdr(q), n++) {
     p = C_u_i_car(q);
     for (i = 0; i < m; i++)
-      if (av[3 + 2 * i] == C_u_i_car(p)) {
-        i = setting[i];
+      if (at[i] == n) {
         if (C_u_i_cdr(p) != av[4 + 2 * i]) p = C_a_pair(&a, C_u_i_car(p), av[4 + 2 * i]);
         break;
       }
@@ -123,10 +128,8 @@ static void C_ccall ds_entity_set_star(C_word c, C_word *av) {
   else { C_set_block_item(last, 1, q); tail = head; }
   /* the keys e does not hold, in front, in the order first set: the last
      one set first */
-  for (i = 0; i < m; i++) {
-    for (j = 0; j < i && av[3 + 2 * j] != av[3 + 2 * i]; j++);
-    if (j == i && !(held & (1u << setting[i])))
-      tail = C_a_pair(&a, C_a_pair(&a, av[3 + 2 * i], av[4 + 2 * setting[i]]), tail);
-  }
+  for (i = 0; i < m; i++)
+    if (!later[i] && at[last_of[i]] < 0)
+      tail = C_a_pair(&a, C_a_pair(&a, av[3 + 2 * i], av[4 + 2 * last_of[i]]), tail);
   C_kontinue(av[1], tail);
 }
