@@ -13,11 +13,15 @@
    make-entity plist->entity entity->plist as-entity entity?
    entity-type entity-tags entity-has-tag? entity-label
    entity-skips-pipeline? define-pipeline
-   entity-number check-entity-number)
+   entity-number check-entity-number
+   entity-ref/scheme entity-set/scheme entity-set*/scheme)
 
-  (import scheme (chicken base) (chicken keyword) (chicken format) (chicken fixnum))
+  (import scheme (chicken base) (chicken keyword) (chicken format) (chicken fixnum) (chicken foreign))
 
-  (define (entity-ref e key #!optional (default #f))
+  ;; entity-ref, entity-set and entity-set* are C procedures (entity.c)
+  ;; that hand what they do not take to these definitions, the rules they
+  ;; follow (docs/entities.org).
+  (define (entity-ref/scheme e key #!optional (default #f))
     (if (plist-shaped? e)
         (not-an-alist 'entity-ref e key)
         (let ((p (assq key e)))
@@ -42,7 +46,7 @@
   ;; A key not present yet is added at the front (and nothing is copied);
   ;; a key that holds this very value already gives e itself, so a game
   ;; that sets a key every frame allocates only when the value changes.
-  (define (entity-set e key value)
+  (define (entity-set/scheme e key value)
     (when (plist-shaped? e) (not-an-alist 'entity-set e key))
     (let find ((rest e) (n 0))
       (cond ((null? rest) (cons (cons key value) e))
@@ -56,12 +60,14 @@
             (else (find (cdr rest) (fx+ n 1))))))
 
   ;; e with its first n+1 pairs copied, the ones whose key is in the plist
-  ;; `kvs` holding their new value; the rest of e is shared.
+  ;; `kvs` holding their new value (a new pair only when the value is not
+  ;; the one held); the rest of e is shared.
   (define (copy-replacing e n kvs)
     (if (fx< n 0)
         e
         (let ((p (car e)))
-          (cons (let ((kv (last-setting (car p) kvs))) (if kv (cons (car p) (cadr kv)) p))
+          (cons (let ((kv (last-setting (car p) kvs)))
+                  (if (and kv (not (eq? (cadr kv) (cdr p)))) (cons (car p) (cadr kv)) p))
                 (copy-replacing (cdr e) (fx- n 1) kvs)))))
 
   ;; The tail of the plist kvs at the last setting of key, or #f.
@@ -73,14 +79,16 @@
 
   ;; (entity-set* e k1 v1 k2 v2 ...) is (entity-set (entity-set e k1 v1) k2 v2)
   ;; ..., with one walk and one copy: present keys are replaced where they
-  ;; are, absent ones go in front, the last one set first.
-  (define (entity-set* e . kvs)
+  ;; are, absent ones go in front, the last one set first; the copy goes
+  ;; up to the last pair whose value changes (none: e itself).
+  (define (entity-set*/scheme e . kvs)
     (when (plist-shaped? e) (not-an-alist 'entity-set* e (if (pair? kvs) (car kvs) #f)))
     (let find ((rest e) (n 0) (last -1) (found 0))
       (if (pair? rest)
-          (if (last-setting (caar rest) kvs)
-              (find (cdr rest) (fx+ n 1) n (fx+ found 1))
-              (find (cdr rest) (fx+ n 1) last found))
+          (let ((kv (last-setting (caar rest) kvs)))
+            (if kv
+                (find (cdr rest) (fx+ n 1) (if (eq? (cadr kv) (cdar rest)) last n) (fx+ found 1))
+                (find (cdr rest) (fx+ n 1) last found)))
           (let ((copy (copy-replacing e last kvs)))
             (if (fx= found (distinct-keys kvs))
                 copy
@@ -90,6 +98,24 @@
                         (else (add (cddr ks)
                                    (cons (cons (car ks) (cadr (last-setting (car ks) kvs)))
                                          out))))))))))
+
+  (foreign-declare "#include \"core/entity.c\"")
+
+  ;; A C procedure of entity.c: a closure of its code and the Scheme
+  ;; definition it hands the rest to.
+  (define-syntax define-c-entity-procedure
+    (syntax-rules ()
+      ((_ name code scheme)
+       (define name
+         ((foreign-primitive scheme-object ((scheme-object proc))
+            "C_word *a = C_alloc(3);"
+            "a[0] = C_CLOSURE_TYPE | 2; a[1] = (C_word)" code "; a[2] = proc;"
+            "C_return((C_word)a);")
+          scheme)))))
+
+  (define-c-entity-procedure entity-ref "ds_entity_ref" entity-ref/scheme)
+  (define-c-entity-procedure entity-set "ds_entity_set" entity-set/scheme)
+  (define-c-entity-procedure entity-set* "ds_entity_set_star" entity-set*/scheme)
 
   ;; How many different keys the plist kvs sets.
   (define (distinct-keys kvs)

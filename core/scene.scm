@@ -179,20 +179,31 @@
     ;; that differs from its argument (-1: none does)
     (let loop ((rest ls) (acc '()) (n 0) (changed -1))
       (if (null? rest)
-          (if (fx< changed 0)
-              ls
-              (let rebuild ((acc (list-tail acc (fx- (fx- n 1) changed)))
-                            (out (list-tail ls (fx+ changed 1))))
-                (if (null? acc) out (rebuild (cdr acc) (cons (car acc) out)))))
+          (shared-result ls acc n changed)
           (let ((y (f (car rest))))
             (loop (cdr rest) (cons y acc) (fx+ n 1) (if (eq? y (car rest)) changed n))))))
 
+  ;; map/shared's list from its results in reverse, acc, of the n elements
+  ;; of ls, the last one changed at index `changed`.
+  (define (shared-result ls acc n changed)
+    (if (fx< changed 0)
+        ls
+        (let rebuild ((acc (list-tail acc (fx- (fx- n 1) changed)))
+                      (out (list-tail ls (fx+ changed 1))))
+          (if (null? acc) out (rebuild (cdr acc) (cons (car acc) out))))))
+
   ;; (proc scene entity) -> entity, for every entity; proc sees this scene,
   ;; i.e. every entity as it was before the map. When proc changes nothing
-  ;; the scene itself comes back.
+  ;; the scene itself comes back. map/shared's loop, calling proc itself:
+  ;; every frame of a game runs it over every entity, a call less each.
   (define (scene-map-entities s proc)
-    (let ((out (map/shared (lambda (e) (proc s e)) (scene-entities s))))
-      (if (eq? out (scene-entities s)) s (with-entities s out))))
+    (let ((es (scene-entities s)))
+      (let loop ((rest es) (acc '()) (n 0) (changed -1))
+        (if (null? rest)
+            (let ((out (shared-result es acc n changed)))
+              (if (eq? out es) s (with-entities s out)))
+            (let ((y (proc s (car rest))))
+              (loop (cdr rest) (cons y acc) (fx+ n 1) (if (eq? y (car rest)) changed n)))))))
 
   ;; (proc entities) -> entities, over the whole list at once.
   (define (scene-transform-entities s proc)

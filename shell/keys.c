@@ -12,37 +12,66 @@
 
 #define DS_MAX_DRAWN_KEYS 30
 
+/* What a walk knows of its keys, made once per call (keywords do not
+   move while it runs): the mask of their DS_KEY_BITs, and for each bit
+   the one key that has it (-1: none; -2: several, searched in turn). */
+typedef struct {
+  C_uword mask;
+  signed char slot[C_WORD_SIZE];
+} ds_key_table;
+
+#define DS_KEY_SLOT(k) ((((C_uword)(k)) >> 4) & (C_WORD_SIZE - 1))
+
+static void ds_key_table_init(ds_key_table *t, C_word keys, int n) {
+  int i;
+  t->mask = 0;
+  for (i = 0; i < C_WORD_SIZE; i++) t->slot[i] = -1;
+  for (i = 0; i < n; i++) {
+    C_word k = C_block_item(keys, i);
+    int s = (int)DS_KEY_SLOT(k);
+    t->mask |= DS_KEY_BIT(k);
+    t->slot[s] = t->slot[s] == -1 ? (signed char)i : -2;
+  }
+}
+
 /* The walk itself, into a C array out[0..n) (n at most
-   DS_MAX_DRAWN_KEYS): shell/sprites.c reads an entity's keys with it
-   too. Answers the bits as above, or -1. */
-static C_word ds_read_keys(C_word alist, C_word keys, int n, C_word *out) {
+   DS_MAX_DRAWN_KEYS), with the table of the same keys: shell/sprites.c
+   reads every entity's keys with it. Answers the bits as above, or -1;
+   out[i] is written only where bit i is set (the caller reads no other). */
+static C_word ds_read_keys_with(const ds_key_table *t, C_word alist, C_word keys, int n, C_word *out) {
   C_word ps, p, k;
   int i;
-  C_uword mask = 0;
   C_word bits = 0, seen = 0;
-  for (i = 0; i < n; i++) {
-    mask |= DS_KEY_BIT(C_block_item(keys, i));
-    out[i] = C_SCHEME_FALSE;
-  }
   for (ps = alist; ps != C_SCHEME_END_OF_LIST; ps = C_block_item(ps, 1)) {
     if (C_immediatep(ps) || !C_truep(C_i_pairp(ps))) return -1;
     p = C_block_item(ps, 0);
     if (C_immediatep(p) || !C_truep(C_i_pairp(p))) return -1;
     k = C_block_item(p, 0);
-    if (!(mask & DS_KEY_BIT(k))) continue;
-    for (i = 0; i < n; i++)
-      if (C_block_item(keys, i) == k) {
-        if (!(seen & ((C_word)1 << i))) {
-          seen |= (C_word)1 << i;
-          if (C_block_item(p, 1) != C_SCHEME_FALSE) {
-            bits |= (C_word)1 << i;
-            out[i] = C_block_item(p, 1);
-          }
-        }
-        break;
+    if (!(t->mask & DS_KEY_BIT(k))) continue;
+    i = t->slot[DS_KEY_SLOT(k)];
+    if (i >= 0) {
+      if (C_block_item(keys, i) != k) continue;
+    } else {
+      for (i = 0; i < n && C_block_item(keys, i) != k; i++);
+      if (i == n) continue;
+    }
+    if (!(seen & ((C_word)1 << i))) {
+      seen |= (C_word)1 << i;
+      if (C_block_item(p, 1) != C_SCHEME_FALSE) {
+        bits |= (C_word)1 << i;
+        out[i] = C_block_item(p, 1);
       }
+    }
   }
   return bits;
+}
+
+static C_word ds_read_keys(C_word alist, C_word keys, int n, C_word *out) {
+  ds_key_table t;
+  int i;
+  for (i = 0; i < n; i++) out[i] = C_SCHEME_FALSE;
+  ds_key_table_init(&t, keys, n);
+  return ds_read_keys_with(&t, alist, keys, n, out);
 }
 
 static C_word ds_entity_keys(C_word alist, C_word keys, C_word out) {

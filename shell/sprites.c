@@ -149,7 +149,7 @@ static int ds_sprite_one(SDL_Renderer *r, SDL_Texture *t, C_word mask, const C_w
   sy = sheet[4] + (local / sheet[5]) * (long long)(sh + sheet[3]);
   if (!ds_near((double)sx, sw) || !ds_near((double)sy, sh)) return DS_TO_SCHEME;
   src.x = (int)sx; src.y = (int)sy; src.w = sw; src.h = sh;
-  facing_left = v[DS_K_FACING] == C_fix(-1);
+  facing_left = (mask & DS_K(FACING)) && v[DS_K_FACING] == C_fix(-1);
   if (!(mask & DS_SPRITE_KEYS)) {       /* a plain sprite: at its place, its size */
     double dx = floor(x - cx), dy = floor(y - cy);
     SDL_Color none = { 255, 255, 255, 255 };
@@ -204,11 +204,14 @@ static C_word ds_sprite_walk(SDL_Renderer *r, SDL_Texture *t, C_word entities, C
                              const int *sheet, C_word camera_x, C_word camera_y) {
   C_word es, v[DS_K_COUNT];
   double cx, cy;
+  ds_key_table table;
   ds_walk_status = 0;
   if (C_header_size(keys) != DS_K_COUNT || !ds_number(camera_x, &cx) || !ds_number(camera_y, &cy))
     return entities;
+  ds_key_table_init(&table, keys, DS_K_COUNT);
   for (es = entities; !C_immediatep(es) && C_truep(C_i_pairp(es)); es = C_block_item(es, 1)) {
-    int st = ds_sprite_one(r, t, ds_read_keys(C_block_item(es, 0), keys, DS_K_COUNT, v), v, sheet, cx, cy);
+    int st = ds_sprite_one(r, t, ds_read_keys_with(&table, C_block_item(es, 0), keys, DS_K_COUNT, v),
+                           v, sheet, cx, cy);
     if (st == DS_TO_SCHEME) return es;
     if (st < 0) { ds_walk_status = st; return es; }
   }

@@ -1,6 +1,6 @@
 ;;; (downstroke entity): keyword alists, plists, tags, skips, define-pipeline.
 
-(import scheme (chicken base) (chicken string) (chicken condition)
+(import scheme (chicken base) (chicken string) (chicken condition) (chicken keyword)
         (downstroke test) (downstroke entity))
 
 (test-group "entity access"
@@ -93,3 +93,104 @@
                 (lambda (exn) (substring-index "#:vy" (error-text exn)))
                 (entity-number e #:vy))
     (test-error "a string is no number" (entity-number e #:name))))
+
+;; entity-ref, entity-set and entity-set* are C (core/entity.c); the Scheme
+;; definitions are the rule. On random entities, well formed or not, both
+;; must answer the same (equal?, and eq? to the argument alike, sharing
+;; the same tail) or raise the same error at the same place.
+(define entity-rand-state 20261203)
+(define (entity-rand n)
+  (set! entity-rand-state (modulo (+ (* 1103515245 entity-rand-state) 12345) 2147483648))
+  (modulo (quotient entity-rand-state 65536) n))
+(define entity-test-keys (vector #:x #:y #:vx #:vy #:type #:tags))
+(define entity-test-values (vector 0 1 -7 1/2 2.5 #f '() 'player (list 1 2) "s"))
+(define (random-key) (vector-ref entity-test-keys (entity-rand (vector-length entity-test-keys))))
+(define (random-value) (vector-ref entity-test-values (entity-rand (vector-length entity-test-values))))
+
+;; An alist of up to 7 pairs, keys possibly repeated; one in four is
+;; malformed somewhere (a plist, an improper tail, a non-pair element, not
+;; a list at all).
+(define (random-entity)
+  (let ((pairs (let make ((i (entity-rand 8)) (out '()))
+                 (if (= i 0) out (make (- i 1) (cons (cons (random-key) (random-value)) out))))))
+    (case (entity-rand 12)
+      ((0) (entity->plist pairs))
+      ((1) (if (pair? pairs) (append pairs 5) 5))
+      ((2) (append pairs (list 'oops) pairs))
+      ((3) (vector-ref (vector #f "entity" 42 (list #:x)) (entity-rand 4)))
+      (else pairs))))
+
+;; What a call does: (value v eq shared), eq whether v is e itself and
+;; shared the pairs of the longest tail of e that v shares (eq?), or
+;; (error location message).
+(define (outcome thunk e)
+  (handle-exceptions exn
+      (list 'error ((condition-property-accessor 'exn 'location #f) exn) (error-text exn))
+    (let ((v (thunk)))
+      (list 'value v (eq? v e) (shared-pairs e v)))))
+(define (shared-pairs e v)
+  (let loop ((t e))
+    (cond ((not (pair? t)) -1)
+          ((let tail? ((v v)) (and (pair? v) (or (eq? v t) (tail? (cdr v)))))
+           (let count ((t t) (n 0)) (if (pair? t) (count (cdr t) (+ n 1)) n)))
+          (else (loop (cdr t))))))
+;; The value e holds for key (so that a setting can be the value held),
+;; 0 when e cannot be read.
+(define (held-value e key) (handle-exceptions exn 0 (entity-ref/scheme e key 0)))
+;; (k1 v1 ...) of n settings of one key, f giving each value
+(define (settings key n) (let make ((i 0)) (if (= i n) '() (cons key (cons i (make (+ i 1)))))))
+
+(test-group "entity-ref, entity-set and entity-set* in C against their Scheme definitions"
+  (let loop ((k 0) (refs 0) (sets 0) (set*s 0))
+    (if (= k 4000)
+        (begin
+          (test "entity-ref, with and without a default, 4000 random entities" 0 refs)
+          (test "entity-set, 4000 random entities" 0 sets)
+          (test "entity-set* with 0 to 4 settings, 4000 random entities" 0 set*s))
+        (let* ((e (random-entity))
+               (key (random-key))
+               (value (if (= 0 (entity-rand 3)) (held-value e key) (random-value)))
+               (kvs (let make ((i (entity-rand 5)))
+                      (if (= i 0) '()
+                          (cons (random-key) (cons (if (= 0 (entity-rand 3)) (held-value e key) (random-value))
+                                                   (make (- i 1)))))))
+               (same? (lambda (fast slow) (equal? (outcome fast e) (outcome slow e)))))
+          (loop (+ k 1)
+                (+ refs (if (and (same? (lambda () (entity-ref e key)) (lambda () (entity-ref/scheme e key)))
+                                 (same? (lambda () (entity-ref e key 'none)) (lambda () (entity-ref/scheme e key 'none))))
+                            0 1))
+                (+ sets (if (same? (lambda () (entity-set e key value)) (lambda () (entity-set/scheme e key value))) 0 1))
+                (+ set*s (if (same? (lambda () (apply entity-set* e kvs)) (lambda () (apply entity-set*/scheme e kvs)))
+                             0 1))))))
+  (let ((e (list (cons #:a 1) (cons #:b 2) (cons #:c 3))))
+    (test-assert "entity-set* to the values held gives the entity itself" (eq? e (entity-set* e #:b 2 #:a 1)))
+    (test-assert "entity-set* copies only up to the last pair it changes"
+                 (eq? (cdr e) (cdr (entity-set* e #:a 10 #:c 3))))
+    (test "entity-set* sets a key twice: the last setting counts, once"
+          '((#:d . 3) (#:a . 1) (#:b . 5) (#:c . 3)) (entity-set* e #:d 1 #:b 5 #:d 3))
+    (test "entity-set* on an entity holding a key twice: its Scheme definition's answer"
+          (entity-set*/scheme (cons (cons #:b 0) e) #:b 7 #:a 2)
+          (entity-set* (cons (cons #:b 0) e) #:b 7 #:a 2))
+    (test "entity-set* with more settings than C takes (17)"
+          (apply entity-set*/scheme e (settings #:a 17))
+          (apply entity-set* e (settings #:a 17)))
+    (test-error "entity-set with a missing value, as its Scheme definition" (entity-set e #:a))
+    (test-error "entity-set* with a key and no value" (entity-set* e #:a 1 #:b))
+    (test "entity-ref with a fourth argument, as its Scheme definition"
+          (entity-ref/scheme e #:z 1 2) (entity-ref e #:z 1 2)))
+  ;; Copies longer than C allocates at once (1,024 pairs in front of the
+  ;; key), and many copies in a row, which fill the nursery: C asks the
+  ;; collector for room and starts again.
+  (let* ((long (let make ((i 0) (out (list (cons #:x 0))))
+                 (if (= i 1500) out (make (+ i 1) (cons (cons (string->keyword (number->string i)) i) out)))))
+         (mid (list-tail long 700)))
+    (test "entity-set behind 1,500 pairs" (entity-set/scheme long #:x 1) (entity-set long #:x 1))
+    (test "entity-set* behind 1,500 pairs" (entity-set*/scheme long #:x 1 #:y 2) (entity-set* long #:x 1 #:y 2))
+    (test "20,000 copies of 800 pairs, each the Scheme's" 0
+          (let loop ((i 0) (bad 0))
+            (if (= i 20000)
+                bad
+                (loop (+ i 1)
+                      (if (equal? (entity-set mid #:x i) (entity-set/scheme mid #:x i))
+                          (if (equal? (entity-set* mid #:x i #:vx i) (entity-set*/scheme mid #:x i #:vx i)) bad (+ bad 1))
+                          (+ bad 1))))))))
