@@ -146,8 +146,12 @@ static int ds_position(C_word o, long *n, long *d) {
    |n| + 8 m d is (64-bit only; integers are small fixnums, which always
    have room). */
 static int ds_room(long n, long d, long m) {
+#ifdef C_SIXTY_FOUR
   long limit = 1L << 61, a = n < 0 ? -n : n;
   return d == 1 || (a < limit && d <= (limit - a) / (8 * m));
+#else
+  return d == 1;
+#endif
 }
 
 /* -1 when this entity is not for this code (a number the kernel does not
