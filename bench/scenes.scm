@@ -427,26 +427,41 @@ static void bench_count_gc(int mode, C_long ms) {
 ;;; S5: S1's map and movers, every mover #:solid? #t (docs/performance.org):
 ;;; entity push-apart and ground detection on solid entities in a crowd.
 ;;; 10 frames of warm-up, 60 timed: the largest crowd is slow.
-(define (run-s5 n runs)
+;;; mode swept: S5 itself, exact positions. mode flonum: the same movers at
+;;; the same places with flonum positions (a tile stop still puts a body on
+;;; an exact pixel, as the tile rules say), to tell the engine's own cost
+;;; per body from the digits that pushes by halves give exact positions.
+(define (s5-scene n mode)
+  (let-values (((scene speeds) (s1-scene n 'swept)))
+    (values (scene-map-entities scene
+                                (lambda (s e)
+                                  (let ((e (entity-set e #:solid? #t)))
+                                    (if (eq? mode 'flonum)
+                                        (entity-set* e #:x (exact->inexact (entity-ref e #:x))
+                                                     #:y (exact->inexact (entity-ref e #:y)))
+                                        e))))
+            speeds)))
+
+(define (run-s5 n mode runs)
   (let ((times
          (let repeat ((r 0) (times '()))
            (if (= r runs)
                times
-               (let-values (((scene speeds) (s1-scene n 'swept)))
-                 (let* ((scene (scene-map-entities scene (lambda (s e) (entity-set e #:solid? #t)))))
-                   (let frames ((f 0) (scene scene) (start #f))
-                     (cond ((= f (+ (warm-up 10) (timed 60)))
-                            (when (= r 0)
-                              (let ((es (scene-entities scene)))
-                                (printf "checksum S5 n=~a sum-x=~a sum-y=~a on-ground=~a~%"
-                                        n (sum #:x es) (sum #:y es) (length (filter-on-ground es)))))
-                            (report-gc! (current-gc-milliseconds) (- (now) start) (* n (timed 60)))
-                            (repeat (+ r 1) (cons (- (now) start) times)))
-                           (else
-                            (let ((start (if (= f (warm-up 10)) (start-timing!) start)))
-                              (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f) start)))))))))))
+               (let-values (((scene speeds) (s5-scene n mode)))
+                 (let frames ((f 0) (scene scene) (start #f))
+                   (cond ((= f (+ (warm-up 10) (timed 60)))
+                          (when (= r 0)
+                            (let ((es (scene-entities scene)))
+                              (printf "checksum S5 ~an=~a sum-x=~a sum-y=~a on-ground=~a~%"
+                                      (if (eq? mode 'flonum) "flonum " "")
+                                      n (sum #:x es) (sum #:y es) (length (filter-on-ground es)))))
+                          (report-gc! (current-gc-milliseconds) (- (now) start) (* n (timed 60)))
+                          (repeat (+ r 1) (cons (- (now) start) times)))
+                         (else
+                          (let ((start (if (= f (warm-up 10)) (start-timing!) start)))
+                            (frames (+ f 1) (s1-logic (engine-pipeline scene 16) speeds f) start))))))))))
     (let ((ms (/ (median times) (exact->inexact (timed 60)))))
-      (report! "S5" 'swept n #f (timed 60) ms (/ (* 1000 ms) n) #f #f))))
+      (report! "S5" mode n #f (timed 60) ms (/ (* 1000 ms) n) #f #f))))
 
 ;;; S6: n solid 16 px bodies piled on one spot, no map (docs/performance.org):
 ;;; every pair overlaps, so the push-apart of docs/physics.org visits all n(n-1)/2
@@ -489,7 +504,8 @@ static void bench_count_gc(int mode, C_long ms) {
                            dir csv-file))))
 (define quick? (member "--quick" args))
 ;; --mode M keeps only that mode: discrete or swept (S1, S3), all-pairs,
-;; spatial-hash or flonum (S2: the spatial hash with flonum positions).
+;; spatial-hash or flonum (S2: the spatial hash with flonum positions),
+;; swept (S5's exact positions) or flonum (S5 with flonum positions).
 (define only-mode (let ((m (flag-value "--mode" #f))) (and m (string->symbol m))))
 ;; --n N keeps only that size of S1 and S2 (and the step table's size).
 (define only-n (let ((n (flag-value "--n" #f))) (and n (string->number n))))
@@ -548,7 +564,9 @@ static void bench_count_gc(int mode, C_long ms) {
          (slow (run-s4 'all-pairs bullets enemies runs)))
     (printf "S4 all-pairs / overlapping-pairs: ~a~%" (fixed (/ slow fast) 2))))
 (when (wanted? "S5")
-  (for-each (lambda (n) (run-s5 n runs)) (sizes (if quick? '(1000) '(1000 4000 16000)))))
+  (for-each (lambda (mode)
+              (for-each (lambda (n) (run-s5 n mode runs)) (sizes (if quick? '(1000) '(1000 4000 16000)))))
+            (modes '(swept flonum))))
 (when (wanted? "S6")
   (for-each (lambda (kind)
               (for-each (lambda (n) (run-s6 n kind runs)) (sizes (if quick? '(100) '(100 200 400)))))

@@ -113,26 +113,25 @@ static int ds_near_slope(const unsigned char *bytes, long cols, long rows, long 
 /* map is #(cols rows col0 row0 tile-width tile-height). */
 /* Fixnums below this stay fixnums, and fit a long, through the sums below:
    2^40 on 64-bit CHICKEN (62-bit fixnums), 2^27 on 32-bit (30-bit). */
-/* A rational position's denominator stays below DS_DENOMINATORS, so that
-   n + v d and d * tile stay within 2^61 (no rationals on 32-bit). */
 #ifdef C_SIXTY_FOUR
 # define DS_LIMIT (1L << 40)
-# define DS_DENOMINATORS (1L << 20)
+# define DS_RATIONALS 1
 #else
 # define DS_LIMIT (1L << 27)
-# define DS_DENOMINATORS 2
+# define DS_RATIONALS 0
 #endif
 #define DS_SMALL(o) (C_truep(C_fixnump(o)) && C_unfix(o) < DS_LIMIT && C_unfix(o) > -DS_LIMIT)
 #define DS_SIZE(o) (C_truep(C_fixnump(o)) && C_unfix(o) >= 0 && C_unfix(o) < DS_LIMIT)
 
-/* A position the kernel takes, as *n / *d: a small fixnum, or an exact
-   rational of a small numerator and a denominator below DS_DENOMINATORS
-   (bodies pushed apart by halves, quarter-pixel starts). */
+/* A position the kernel may take, as *n / *d: a small fixnum, or (on
+   64-bit) an exact rational of fixnums (bodies pushed apart by halves,
+   quarter-pixel starts); ds_room then says whether its digits leave room
+   for the sums below. */
 static int ds_position(C_word o, long *n, long *d) {
   if (DS_SMALL(o)) { *n = C_unfix(o); *d = 1; return 1; }
-  if (!C_immediatep(o) && C_block_header(o) == C_RATNUM_TAG) {
+  if (DS_RATIONALS && !C_immediatep(o) && C_block_header(o) == C_RATNUM_TAG) {
     C_word num = C_block_item(o, 0), den = C_block_item(o, 1);
-    if (DS_SMALL(num) && DS_SIZE(den) && C_unfix(den) < DS_DENOMINATORS) {
+    if (C_truep(C_fixnump(num)) && C_truep(C_fixnump(den))) {
       *n = C_unfix(num);
       *d = C_unfix(den);
       return 1;
@@ -232,6 +231,20 @@ static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, C_word flag
   return C_fix(writes);
 }
 
+/* Whether a rational position n/d leaves room for the kernel's sums: every
+   one is n plus a few multiples of d by a velocity, a size, a tile size or
+   a pixel the body spans (each at most m), within 2^61 when
+   |n| + 8 m d is (64-bit only; integers are small fixnums, which always
+   have room). */
+static int ds_room(long n, long d, long m) {
+#ifdef C_SIXTY_FOUR
+  long limit = 1L << 61, a = n < 0 ? -n : n;
+  return d == 1 || (a < limit && d <= (limit - a) / (8 * m));
+#else
+  return d == 1;
+#endif
+}
+
 /* -1 when this entity is not for this code (a number the kernel does not
    take, a non-empty #:skip-pipelines, an unknown mode: DS_NOT_HERE), else
    the keys to write. Velocities are fixnums, so a rational position keeps
@@ -257,8 +270,11 @@ static C_word ds_fixnum_motion(C_word out, const unsigned char *bytes, C_word ma
   long col0 = C_unfix(C_block_item(map, 2)), row0 = C_unfix(C_block_item(map, 3));
   long tw = C_unfix(C_block_item(map, 4)), th = C_unfix(C_block_item(map, 5));
   int has_map = flags & DS_HAS_MAP, grav = flags & DS_GRAVITY, swept = (flags & DS_SWEPT) != 0;
-  if ((xd > 1 || yd > 1) && (tw >= DS_DENOMINATORS || th >= DS_DENOMINATORS))
-    return C_fix(-1);                  /* d * tile could overflow */
+  if (xd > 1 || yd > 1) {              /* the largest multiplier of a denominator below */
+    long vy_reach = (vy0 < 0 ? -vy0 : vy0) + (grav ? (ay < 0 ? -ay : ay) + (g < 0 ? -g : g) : 0);
+    long m = ds_max(ds_max(ds_max(vx, -vx), vy_reach), ds_max(ds_max(w, h), ds_max(tw, th))) + 2;
+    if (!(ds_room(xn, xd, m) && ds_room(yn, yd, m))) return C_fix(-1);
+  }
   int accelerate = grav && !(ay == 0 && (flags & DS_HAS_AY));
   long vy = grav ? (accelerate ? vy0 + ay : vy0) + g : vy0;
   if ((flags & DS_SLOPES) &&          /* set only with a map */

@@ -25,7 +25,7 @@
           (downstroke tile-collisions) (downstroke contacts) (downstroke motion)
           (downstroke groups) (downstroke touch) (downstroke ladders) (downstroke slopes))
   ;; without the names after ";; for sibling modules only" in tile-grid.scm's,
-  ;; escape.scm's and tile-collisions.scm's export lists (tests/layout-test.scm checks
+  ;; escape.scm's, tile-collisions.scm's and motion.scm's export lists (tests/layout-test.scm checks
   ;; that games do not see them)
   (reexport (downstroke tuning)
             (except (downstroke tile-grid)
@@ -34,5 +34,5 @@
             (except (downstroke escape) escape-place)
             (except (downstroke tile-collisions)
                     swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing? slope-cut-of ceiling-cut-of)
-            (downstroke contacts) (downstroke motion) (downstroke groups) (downstroke touch)
-            (downstroke ladders) (only (downstroke slopes) slope-surface ceiling-surface)))
+            (downstroke contacts) (except (downstroke motion) motion-kernel-declines)
+            (downstroke groups) (downstroke touch) (downstroke ladders) (only (downstroke slopes) slope-surface ceiling-surface)))

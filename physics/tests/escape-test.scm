@@ -5,7 +5,8 @@
 
 (import scheme (chicken base) (chicken format) (chicken process-context) (downstroke test) (downstroke entity)
         (downstroke tilemap) (downstroke scene) (downstroke pipeline) (downstroke util)
-        (chicken sort) srfi-4 (only (downstroke tween) make-tween) (only (downstroke physics) *gravity* tile-way-out entity-cell-span))
+        (chicken sort) srfi-4 (only (downstroke tween) make-tween) (only (downstroke physics) *gravity* tile-way-out entity-cell-span)
+        (only (downstroke tile-grid) grids))
 
 (include-relative "../../tests/bounded-support.scm")
 
@@ -78,6 +79,25 @@
           (es-frame tm 'swept (es-ent #:x 52 #:y 52 #:width 8 #:height 8 #:vx 0 #:vy 1
                                       #:skip-pipelines '(tile-collisions-x tile-collisions-y))
                     xyv))))
+
+;; A body pushed a little way into a wall, with no tile edge near its
+;; other sides, leaves it by the straight moves alone: the search for a
+;; move on both axes at once, and the table of solid cells it reads
+;; (slot 4 of the map's grids), are never needed.
+(test-group "escape: half a pixel into a wall, out by the straight move alone"
+  (for-each
+   (lambda (x)
+     (let ((tm (es-room 4 2)))
+       (test (sprintf "x ~a: out to x 16, then a pixel right" x) (list (+ 16 1) 20 1 0)
+             (map (lambda (v) (if (exact? v) v (inexact->exact v)))
+                  (es-frame tm 'swept (es-ent #:x x #:y 20 #:width 12 #:height 12 #:vx 1 #:vy 0) xyv)))
+       (test (sprintf "x ~a: no table of solid cells was made" x) #f (vector-ref (grids tm) 4))))
+   (list 31/2 15.5))
+  ;; in a corner the diagonal search runs (and makes the table)
+  (let ((tm (es-room 4 2)))
+    (test "half a pixel into a wall and the floor: the diagonal way" '(16 34 0 0)
+          (es-frame tm 'swept (es-ent #:x 31/2 #:y 69/2 #:width 12 #:height 14 #:vx -1 #:gravity? #t) xyv))
+    (test-assert "and it made the table" (vector-ref (grids tm) 4))))
 
 ;; Every push a wall, a floor, a ceiling or a corner can receive, less
 ;; than halfway through a one-tile wall: one swept frame later the body

@@ -13,7 +13,8 @@
 
 (import scheme (chicken base) (chicken condition) (chicken format) srfi-4 (downstroke test)
         (downstroke entity) (downstroke tilemap) (downstroke scene) (downstroke physics)
-        (downstroke tween) (downstroke animation) (downstroke pipeline) (downstroke particles))
+        (downstroke tween) (downstroke animation) (downstroke pipeline) (downstroke particles)
+        (only (downstroke motion) motion-kernel-declines))
 
 ;; Random bodies often lack a size on purpose: the checks would say so.
 (scene-checks #f)
@@ -323,6 +324,57 @@
                 (if (and (pair? fast) (or (ratnum? (entity-ref fast #:x 0)) (ratnum? (entity-ref fast #:y 0))))
                     (+ rational 1)
                     rational)
+                (or first-difference (and (not (equal? fast slow)) (list e fast slow))))))))
+
+;; Positions with long denominators, as a crowd pushed apart by halves
+;; for many frames leaves them (2^21 to 2^61, and 3^30), some so long that
+;; the kernel's sums would overflow (it must leave those to the readable
+;; steps, physics/motion.c's ds_room).
+(define (pl-wide-entity k tm)
+  (map (lambda (p)
+         (if (and (memq (car p) '(#:x #:y)) (pl-chance 85))
+             (cons (car p) (+ (cdr p) (/ (+ 1 (* 2 (pl-rand 100000)))
+                                         (pl-pick 2097152 1073741824 1099511627776 140737488355328
+                                                  205891132094649 36028797018963968 2305843009213693952))))
+             p))
+       (pl-fixnum-entity k tm)))
+
+;; Rational positions are the kernel's on 64-bit CHICKEN only (31-bit
+;; fixnums, as on wasm32, leave them all to the readable steps).
+(define pl-64-bit? (fixnum? 1099511627776))
+
+(test-group "the motion pass's kernel takes positions with long denominators"
+  ;; 2^30 and 2^33 in the denominators, a crowd's digits after some
+  ;; frames: before, the kernel took denominators below 2^20 only
+  (let* ((scene (make-scene tilemap: (list->tilemap '((0 0 0 0) (0 0 0 0) (1 1 1 1)) tile-width: 16 tile-height: 16)
+                            collision-mode: 'swept))
+         (e (list (cons #:x (+ 20 1/1073741824)) (cons #:y (+ 10 3/8589934592)) (cons #:width 12) (cons #:height 12)
+                  (cons #:vx 2) (cons #:vy 1) (cons #:gravity? #t)))
+         (before (motion-kernel-declines))
+         (fast ((motion-pass scene 16 #t) e)))
+    (test (if pl-64-bit? "the kernel took it" "the kernel left it (31-bit fixnums)")
+          (if pl-64-bit? before (+ before 1)) (motion-kernel-declines))
+    (test "x moved by vx, its denominator kept" (+ 22 1/1073741824) (entity-ref fast #:x))
+    (test "y moved by vy + gravity" (+ 12 3/8589934592) (entity-ref fast #:y))
+    (test "the readable steps say the same" fast
+          (detect-on-solid scene (pl-six-steps scene e) 16)))
+  (let loop ((k 0) (different 0) (taken 0) (first-difference #f))
+    (if (= k 8000)
+        (begin
+          (test "8000 random entities with long denominators: identical results" 0 different)
+          (when first-difference (print "pipeline: first difference " first-difference))
+          (if pl-64-bit?
+              (test-assert "the kernel took many of them, and left many" (< 2000 taken 6000))
+              (test-assert "the kernel took only those at integer positions" (< taken 2000))))
+        (let* ((scene (make-scene tilemap: (if (pl-chance 90) (pl-origin-map) #f)
+                                  collision-mode: (pl-pick 'swept 'discrete)))
+               (e (pl-wide-entity k (scene-tilemap scene)))
+               (declined (motion-kernel-declines))
+               (fast (pl-outcome (lambda () ((motion-pass scene 16 #t) e))))
+               (slow (pl-outcome (lambda () (detect-on-solid scene (pl-six-steps scene e) 16)))))
+          (loop (+ k 1)
+                (if (equal? fast slow) different (+ different 1))
+                (if (= declined (motion-kernel-declines)) (+ taken 1) taken)
                 (or first-difference (and (not (equal? fast slow)) (list e fast slow))))))))
 
 (test-group "the motion pass's fixnum path is the six steps and ground detection"
