@@ -108,6 +108,9 @@
       (sleep 1)
       (run)
       (test "a second run leaves tiles.png as it was" before (file-modification-time tiles)))
-    (delete-file coin)
+    ;; Stale, not deleted: the demo suites running beside this one read
+    ;; coin.wav, and a missing one fails them.
+    (set-file-times! coin 0 0)
     (run)
-    (test-assert "a missing coin.wav is made again" (file-exists? coin))))
+    (test-assert "a stale coin.wav is made again"
+                 (>= (file-modification-time coin) (file-modification-time "../tools/make-assets.scm")))))

@@ -29,18 +29,27 @@
 ;;; Sounds: jump.wav, coin.wav, boom.wav (effects); music.wav, a 4 s loop.
 
 (import scheme (chicken base) (chicken format) (chicken file) (chicken file posix)
-        (chicken process-context)
+        (chicken process-context) (only (chicken process-context posix) current-process-id)
         (chicken bitwise) (chicken io) (downstroke sdl2))
 
 (define T 16)
 (define out-dir "demo/assets")
+
+;; Writes a file under a temporary name, then renames it into place: a demo
+;; or a test suite reading the asset while it is remade (each launcher runs
+;; this generator, and suites run side by side) sees the old file or the
+;; new one, never a missing or half-written one.
+(define (write-in-place! path write!)
+  (let ((tmp (sprintf "~a.~a.tmp" path (current-process-id))))
+    (write! tmp)
+    (rename-file tmp path #t)))
 
 ;; Draw on a w x h transparent surface with (draw renderer); save as PNG.
 (define (make-png! path w h draw)
   (let* ((s (create-rgba-surface! w h))
          (r (create-software-renderer! s)))
     (draw r)
-    (img-save-png! s path)
+    (write-in-place! path (lambda (tmp) (img-save-png! s tmp)))
     (destroy-renderer! r)
     (free-surface! s)
     (printf "wrote ~a (~a x ~a)~%" path w h)))
@@ -330,7 +339,7 @@
 ;; samples: a list of integers 0..255 (128 is silence).
 (define (write-wav! path samples)
   (let ((n (length samples)))
-    (with-output-to-file path
+    (write-in-place! path (lambda (tmp) (with-output-to-file tmp
       (lambda ()
         (write-string (string-append
                        "RIFF" (u32le (+ 36 n)) "WAVE"
@@ -338,7 +347,7 @@
                        (u16le 1) (u16le 8)
                        "data" (u32le n)))
         (for-each (lambda (s) (write-char (integer->char s))) samples))
-      #:binary)
+      #:binary)))
     (printf "wrote ~a (~a samples, ~a ms)~%" path n (quotient (* 1000 n) rate))))
 
 ;; A square wave whose frequency goes from f0 to f1 Hz over `ms`, fading out.
