@@ -34,6 +34,12 @@
 (unless (get-environment-variable "SDL_AUDIODRIVER")
   (set-environment-variable! "SDL_AUDIODRIVER" "dummy"))
 
+;; Tiled's example maps, fetched once before any suite runs (make check's
+;; `examples` target does it too): two suites fetching them side by side
+;; (tmx, tiled-compare) would remove each other's copy half-way. A failed
+;; fetch is left to those suites to report.
+(system "sh ../tools/fetch-tiled-examples.sh >/dev/null 2>&1")
+
 ;; The demos' art, made when missing or stale (the generator decides), so
 ;; `chicken-install -test` from a fresh clone has what the demos load.
 (unless (zero? (system "cd .. && csi -q -s tools/make-assets.scm >/dev/null"))
