@@ -36,9 +36,18 @@ EOF
     emcc -O0 "$out/$name.o" $LIBS -sNODERAWFS=1 -sALLOW_MEMORY_GROWTH=1 -sEXIT_RUNTIME=1 \
          -o "$out/$name.js" 2>>"$out/$name.log" ||
     { echo "FAIL $name: did not build (build/web/wasm32/$name.log)"; tail -5 "$out/$name.log"; exit 1; }
-  last=$(cd "$top/tests" && node --no-experimental-fetch "$out/$name.js" 2>&1 | tee "$out/$name.out" | tail -1)
+  # emscripten warns on stderr at every getrusage (each collection), so a
+  # collection during exit can follow the count: read the last count line,
+  # and take node's exit status as well
+  status=0
+  (cd "$top/tests" && node --no-experimental-fetch "$out/$name.js") >"$out/$name.out" 2>&1 || status=$?
+  last=$(grep -E '^[0-9]+ passed, [0-9]+ failed$' "$out/$name.out" | tail -1)
+  [ -n "$last" ] || last="no count printed (exit status $status, build/web/wasm32/$name.out)"
   p=$(echo "$last" | sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed$/\1/p')
   f=$(echo "$last" | sed -n 's/^\([0-9]*\) passed, \([0-9]*\) failed$/\2/p')
+  if [ -n "$p" ] && [ "$f" = 0 ] && [ "$status" != 0 ]; then
+    last="$last, but node exited with status $status"; f=1
+  fi
   if [ -z "$p" ]; then
     echo "FAIL $name (wasm32): $last"; failed=$((failed + 1)); bad="$bad $name"
   else
