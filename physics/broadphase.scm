@@ -17,7 +17,8 @@
 (module (downstroke broadphase)
   (;; for sibling modules only: physics' entity step and ground detection,
    ;; and the overlap queries
-   visit-pairs-in-order visit-near-pairs make-box-index box-index-near)
+   visit-pairs-in-order visit-near-pairs make-box-index box-index-near
+   box-index-gather! box-index-buffer)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign) (downstroke arith))
 
@@ -211,11 +212,11 @@
   ;; Boxes that do not move, filed once and asked about many times: n boxes
   ;; numbered 0..n-1, (box k) giving (values x y w h).
   (define-record-type box-index
-    (%make-box-index n size buckets mask stamp buf large queries)
+    (%make-box-index n size buckets mask stamp buf large queries span)
     box-index?
     (n index-n) (size index-size) (buckets index-buckets) (mask index-mask)
     (stamp index-stamp) (buf index-buf) (large index-large)
-    (queries index-queries index-queries-set!))
+    (queries index-queries index-queries-set!) (span index-span))
 
   (define (make-box-index n box)
     (let* ((size (cell-size n box))
@@ -229,7 +230,8 @@
                               (file (fx- k 1) (cons k large))
                               (begin (file-box! buckets mask k span)
                                      (file (fx- k 1) large))))))))
-      (%make-box-index n size buckets mask (make-vector (max n 1) -1) (make-vector (max n 1) 0) large 0)))
+      (%make-box-index n size buckets mask (make-vector (max n 1) -1) (make-vector (max n 1) 0) large 0
+                       (make-vector 4 0))))
 
   ;; The boxes sharing a hash cell with the box x y w h (a superset of
   ;; those it overlaps), ascending, each once.
@@ -243,6 +245,22 @@
           (gather-near q -1 span '() (index-buckets index) (index-large index)
                        (index-stamp index) (index-mask index) (index-buf index)))))
 
+  ;; box-index-near's common case without a new list or vector: the query
+  ;; box's span four fixnum cells, not large. The boxes it would list are
+  ;; put in (box-index-buffer index), ascending, and their count returned;
+  ;; -1 otherwise, and box-index-near answers. The buffer holds them until
+  ;; the next query.
+  (define (box-index-gather! index x y w h)
+    (let ((span (index-span index)))
+      (if (eq? (fast-span! span x y w h (index-size index) large-span) 1)
+          (let ((q (index-queries index)))
+            (index-queries-set! index (fx+ q 1))
+            (gather-cells! (index-buf index) q -1 span (index-buckets index) (index-large index)
+                           (index-stamp index) (index-mask index)))
+          -1)))
+
+  (define (box-index-buffer index) (index-buf index))
+
   ;; m query boxes, (query j) giving (values x y w h), against n filed
   ;; boxes: calls (found j k) for every filed box near query j, j ascending
   ;; and, for each j, k ascending, each pair once. The cost grows with the
@@ -254,12 +272,19 @@
           (let-values (((x y w h) (query j)))
             (for-each (lambda (k) (found j k)) (box-index-near index x y w h)))))))
 
-  ;; Cells about twice the mean box size keep a few boxes per cell.
+  ;; Cells about twice the mean box size keep a few boxes per cell. The
+  ;; size is rounded up to an integer, which the C of fast-span! takes: a
+  ;; mean of sizes that are not all alike is a rational, and a rational
+  ;; cell size left every box to the generic arithmetic. Any size gives
+  ;; the same pairs; only how many are asked changes.
   (define (cell-size n box)
     (let loop ((k 0) (total 0))
       (if (fx= k n)
           (let ((mean (/ total n)))
-            (if (and (real? mean) (> mean 0)) (* 2 mean) 1))
+            (cond ((not (and (real? mean) (> mean 0))) 1)
+                  ((exact? mean) (ceiling (* 2 mean)))
+                  ((< mean 1e15) (inexact->exact (ceiling (* 2 mean))))
+                  (else (* 2 mean))))
           (let-values (((x y w h) (box k)))
             (loop (fx+ k 1) (+ total (max w h)))))))
 

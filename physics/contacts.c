@@ -41,3 +41,61 @@ static C_word ds_boxes_overlap(C_word x1, C_word y1, C_word w1, C_word h1,
     return C_fix(-1);
   return C_fix(a < e + g && e < a + c && b < f + h && f < b + d);
 }
+
+/* Ground detection's test of a candidate supporter (contacts.scm,
+   supports?), for the candidates a query of the support index put in
+   buf[from..count): the solid s = solids[buf[i]]. Each is judged in
+   supports?'s order, reading s's pairs as entity-ref and num read them;
+   a candidate is left to the Scheme (its position i is returned) as soon
+   as the test needs a number that is not a fixnum below DS_EXACT_DOUBLE
+   or a finite flonum, finds s not a proper list of pairs up to the key,
+   or finds s one-way (whose test reads the mover further). Otherwise:
+   -2 when a candidate holds the mover up, -1 when none does, -3 when a
+   number of the mover's (x, w, bottom, tol) is not for this code.
+   keys is #(#:solid? #:one-way? #:x #:width #:y). */
+
+#define DS_PAIR(x) (!C_immediatep(x) && C_block_header(x) == C_PAIR_TAG)
+
+/* The pair of key in the list of pairs e (*p), or C_SCHEME_FALSE when e
+   has none; 0 when e is not a proper list of pairs before key. */
+static inline int ds_find(C_word e, C_word key, C_word *p) {
+  for (; e != C_SCHEME_END_OF_LIST; e = C_u_i_cdr(e)) {
+    if (!DS_PAIR(e) || !DS_PAIR(C_u_i_car(e))) return 0;
+    if (C_u_i_car(C_u_i_car(e)) == key) { *p = C_u_i_car(e); return 1; }
+  }
+  *p = C_SCHEME_FALSE;
+  return 1;
+}
+/* num's reading of key in e, as a double in *d (0 when absent); 0 when
+   this code cannot take it */
+static inline int ds_find_real(C_word e, C_word key, double *d) {
+  C_word p;
+  if (!ds_find(e, key, &p)) return 0;
+  if (p == C_SCHEME_FALSE) { *d = 0.0; return 1; }
+  return ds_overlap_real(C_u_i_cdr(p), d);
+}
+
+static C_word ds_ground_scan(C_word buf, C_word from, C_word count, C_word solids,
+                             C_word entity, C_word x, C_word w, C_word bottom,
+                             C_word tol, C_word keys) {
+  double mx, mw, mb, t, sx, sw, sy;
+  C_word i, s, p;
+  if (!(ds_overlap_real(x, &mx) & ds_overlap_real(w, &mw) & ds_overlap_real(bottom, &mb)
+        & ds_overlap_real(tol, &t)))
+    return C_fix(-3);
+  for (i = C_unfix(from); i < C_unfix(count); i++) {
+    s = C_block_item(solids, C_unfix(C_block_item(buf, i)));
+    if (s == entity) continue;
+    if (!ds_find(s, C_block_item(keys, 0), &p)) return C_fix(i);
+    if (p == C_SCHEME_FALSE || C_u_i_cdr(p) == C_SCHEME_FALSE) continue;
+    if (!ds_find_real(s, C_block_item(keys, 2), &sx) || !ds_find_real(s, C_block_item(keys, 3), &sw))
+      return C_fix(i);
+    if (!(mx < sx + sw) || !(sx < mx + mw)) continue;
+    if (!ds_find_real(s, C_block_item(keys, 4), &sy)) return C_fix(i);
+    if (!(fabs(sy - mb) <= t)) continue;
+    if (!ds_find(s, C_block_item(keys, 1), &p)) return C_fix(i);
+    if (p == C_SCHEME_FALSE || C_u_i_cdr(p) == C_SCHEME_FALSE) return C_fix(-2);
+    return C_fix(i);
+  }
+  return C_fix(-1);
+}

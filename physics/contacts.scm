@@ -31,15 +31,39 @@
              ;; many solids: only those whose top is near the feet
              (let* ((si (support-index solids))
                     (v (car si))
-                    (tol *entity-ground-contact-tolerance*))
-               (let loop ((ks (box-index-near (cdr si) x (- bottom tol) w (* 2 tol))))
-                 (and (pair? ks)
-                      (or (supports? (vector-ref v (car ks)) entity x w bottom vy)
-                          (loop (cdr ks))))))
+                    (index (cdr si))
+                    (tol *entity-ground-contact-tolerance*)
+                    (count (box-index-gather! index x (- bottom tol) w (* 2 tol))))
+               (if (fx< count 0)
+                   (let loop ((ks (box-index-near index x (- bottom tol) w (* 2 tol))))
+                     (and (pair? ks)
+                          (or (supports? (vector-ref v (car ks)) entity x w bottom vy)
+                              (loop (cdr ks)))))
+                   (supported-among? (box-index-buffer index) count v entity x w bottom vy tol)))
              (let loop ((solids solids))
                (and (pair? solids)
                     (or (supports? (car solids) entity x w bottom vy)
                         (loop (cdr solids))))))))
+
+  ;; Whether one of the candidates buf[0..count) (indices into the vector
+  ;; of solids v) supports the entity: supports? for each in turn, the
+  ;; common cases judged in C (contacts.c, ds_ground_scan), which hands
+  ;; back a candidate it cannot judge (and all of them, for a mover whose
+  ;; numbers it does not take). C judges fixnums and flonums only, with
+  ;; exactly supports?'s answer; everything else is supports?'s.
+  (define ground-keys (vector #:solid? #:one-way? #:x #:width #:y))
+  (define (supported-among? buf count v entity x w bottom vy tol)
+    (let scan ((from 0))
+      (let ((r (##core#inline "ds_ground_scan" buf from count v entity x w bottom tol ground-keys)))
+        (cond ((eq? r -2) #t)
+              ((eq? r -1) #f)
+              ((eq? r -3)
+               (let loop ((i from))
+                 (and (fx< i count)
+                      (or (supports? (vector-ref v (vector-ref buf i)) entity x w bottom vy)
+                          (loop (fx+ i 1))))))
+              (else (or (supports? (vector-ref v (vector-ref buf r)) entity x w bottom vy)
+                        (scan (fx+ r 1))))))))
 
   (define (supports? s entity x w bottom vy)
     (and (not (eq? s entity))

@@ -78,4 +78,39 @@
               (list 14 14.5 30 30.5)
               '("fixnum, overlapping" "flonum, overlapping" "fixnum, apart" "flonum, apart"))))
 
+;; Ground detection among many solids judges the candidates near a body's
+;; feet (from the hash of their tops) in one C call (physics/contacts.c,
+;; ds_ground_scan) when their numbers are fixnums or flonums: the bytes
+;; of a query are the same for 2 candidates and for 40. On 20dae7f each
+;; candidate was a Scheme call and a pair of the list of candidates.
+(test-group "ground detection among many solids: no nursery per candidate"
+  (let* ((solid (lambda (x y) (list (cons #:x x) (cons #:y y) (cons #:width 12) (cons #:height 12)
+                                    (cons #:solid? #t))))
+         ;; n solids under the mover's feet whose tops are 12 px above
+         ;; them (too far to stand on), the rest far away: 60 in all
+         (solids (lambda (n x y)
+                   (let loop ((k 0) (out '()))
+                     (if (= k 60)
+                         out
+                         (loop (+ k 1) (cons (if (< k n) (solid x y) (solid (+ x 1000 (* 30 k)) (+ y 900))) out))))))
+         (mover (lambda (x y) (list (cons #:x x) (cons #:y y) (cons #:width 12) (cons #:height 12)
+                                    (cons #:vy 0) (cons #:solid? #t))))
+         ;; (bytes answer) of a query after one that builds the hash
+         (query (lambda (e ss)
+                  (entity-solid-support-below? e ss)
+                  (list (nursery-used entity-solid-support-below? (list e ss))
+                        (entity-solid-support-below? e ss)))))
+    (for-each (lambda (x y kind)
+                (let ((few (query (mover x y) (solids 2 x y)))
+                      (many (query (mover x y) (solids 40 x y))))
+                  (test (sprintf "~a positions: 40 candidates, the bytes of 2, and no ground" kind)
+                        #t (and (car few) (car many) (= (car few) (car many))
+                                (not (cadr few)) (not (cadr many))))))
+              (list 100 100.5)
+              (list 100 100.25)
+              '("fixnum" "flonum"))
+    (let ((ss (append (solids 40 100 100) (list (solid 100 112)))))
+      (test "... and a supporter after them is found" #t
+            (cadr (query (mover 100 100) ss))))))
+
 (test-exit)
