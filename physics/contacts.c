@@ -99,3 +99,16 @@ static C_word ds_ground_scan(C_word buf, C_word from, C_word count, C_word solid
   }
   return C_fix(-1);
 }
+
+/* 1 when the boxes of the entities a and b, read as resolve-colliding-pair
+   reads them (a key's first pair, 0 when absent), are numbers this file
+   takes and do not overlap; 0 otherwise (they overlap, or the Scheme
+   decides). keys is #(#:x #:y #:width #:height). */
+static C_word ds_pair_apart(C_word a, C_word b, C_word keys) {
+  double v[8];
+  int i;
+  for (i = 0; i < 4; i++)
+    if (!ds_find_real(a, C_block_item(keys, i), &v[i]) || !ds_find_real(b, C_block_item(keys, i), &v[4 + i]))
+      return C_fix(0);
+  return C_fix(!(v[0] < v[4] + v[6] && v[4] < v[0] + v[2] && v[1] < v[5] + v[7] && v[5] < v[1] + v[3]));
+}

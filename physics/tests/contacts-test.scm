@@ -1,12 +1,15 @@
-;;; Ground detection on solid entities in a crowd (docs/physics.org,
-;;; "Standing on things"): from 48 solids on, the candidates near a body's
-;;; feet come from a hash of their tops, and those whose numbers are
-;;; fixnums or flonums are judged in C (physics/contacts.c,
-;;; ds_ground_scan). Its answer must be the Scheme definition's for every
-;;; kind of number, and an error where the definition raises one.
+;;; Bodies against bodies in a crowd, where physics/contacts.c answers for
+;;; boxes of fixnums and flonums: its answers must be the Scheme
+;;; definitions' for every kind of number, and an error where those raise
+;;; one.
+;;; Ground detection (docs/physics.org, "Standing on things"): from 48
+;;; solids on, the candidates near a body's feet come from a hash of their
+;;; tops, judged in C (ds_ground_scan).
+;;; The pair pass (docs/physics.org, "Solid entities"): a pair the hash
+;;; offers whose boxes do not overlap is left in C (ds_pair_apart).
 
 (import scheme (chicken base) (chicken format) (chicken condition)
-        (downstroke test) (downstroke entity) (downstroke physics))
+        (downstroke test) (downstroke entity) (downstroke physics) (chicken fixnum))
 
 (define (ent . plist) (plist->entity plist))
 
@@ -116,3 +119,42 @@
                         (if (eq? want #t) (+ grounded 1) grounded)
                         (if (eq? want 'error) (+ errors 1) errors)
                         (or first (and (not (eq? got want)) (list b got want)))))))))))
+
+;; docs/physics.org's pair walk: every pair i < j of colliding entities in
+;; list order, each seeing the positions the pairs before it left.
+(define (pair-walk es)
+  (let* ((v (list->vector es)) (n (vector-length v))
+         (collides? (lambda (e) (and (entity-ref e #:solid? #f) (not (memq 'entity-collisions (entity-ref e #:skip-pipelines '())))))))
+    (do ((i 0 (+ i 1))) ((= i n) (vector->list v))
+      (do ((j (+ i 1) (+ j 1))) ((= j n))
+        (when (and (collides? (vector-ref v i)) (collides? (vector-ref v j)))
+          (let-values (((a b) (resolve-pair (vector-ref v i) (vector-ref v j))))
+            (vector-set! v i a)
+            (vector-set! v j b)))))))
+
+(define (pair-outcome thunk) (handle-exceptions exn 'error (thunk)))
+
+(test-group "the pair pass: the Scheme definition's pushes for every kind of number"
+  (let loop ((round 0) (different 0) (moved 0) (errors 0) (first #f))
+    (if (= round 21)
+        (begin
+          (test "21 crowds of 120 bodies, hash and all pairs: the walk's entities, numbers of the same types" 0 different)
+          (test-assert "many bodies were pushed" (> moved 200))
+          (test-assert "and a crowd holding a refused number raised an error" (> errors 0))
+          (when first (print "pairs: first difference " first)))
+        (let* ((base (list-ref bases (modulo round (length bases))))
+               (es (map (lambda (e) (if (= (rnd 60) 0) (entity-set e #:x (pick (list +nan.0 +inf.0 'ten))) e))
+                        ;; one in five a wall that is not pushed
+                        (map (lambda (e) (if (= (rnd 5) 0) (entity-set e #:immovable? #t) e))
+                             (crowd base 120 (= (modulo round 4) 3)))))
+               (want (pair-outcome (lambda () (pair-walk es)))))
+          (let ((hash (pair-outcome (lambda () (resolve-entity-collisions es 'spatial-hash))))
+                (all (pair-outcome (lambda () (resolve-entity-collisions es 'all-pairs)))))
+            (loop (+ round 1)
+                  (+ different (if (equal? hash want) 0 1) (if (equal? all want) 0 1))
+                  (if (pair? want)
+                      (+ moved (let count ((a es) (b want) (k 0))
+                                 (if (null? a) k (count (cdr a) (cdr b) (if (eq? (car a) (car b)) k (+ k 1))))))
+                      moved)
+                  (if (eq? want 'error) (+ errors 1) errors)
+                  (or first (and (not (and (equal? hash want) (equal? all want))) (list round base)))))))))
