@@ -68,7 +68,7 @@
    render-clear! render-fill-rect! render-draw-rect! render-copy!
    render-present! render-read-pixels
    ;; for (downstroke mapdraw): a tile layer's cells in one call
-   render-tile-cells! render-batched render-batching?
+   render-tile-cells! render-batched render-batching? render-gl-batching? render-gl-quads
    ;; for (downstroke renderer): a run of entities drawn in one call
    render-sprite-walk!
    ;; textures
@@ -515,6 +515,13 @@ EOF
   ;; (render-batching? #f): render-batched only calls its thunk (to
   ;; compare the two, as shell/tests/tile-batch-test.scm does).
   (define render-batching? (make-parameter #t))
+  ;; (render-gl-batching? #f): runs of quads go to SDL_RenderGeometry even
+  ;; on the opengl renderer, where shell/gl-batch.c draws them itself;
+  ;; render-gl-quads: how many quads it has drawn so (both for the
+  ;; comparisons of shell/tests/gl-batch-test.scm).
+  (define render-gl-batching? (make-parameter #t))
+  (define (render-gl-quads) (inexact->exact (foreign-value "ds_gl_quads" double)))
+  (define gl-allow! (foreign-lambda void "ds_gl_allow" bool))
   (define (render-batched r thunk)
     (if (or batching? (renderer-software? r) (not (render-batching?)))
         (thunk)
@@ -522,6 +529,7 @@ EOF
           (dynamic-wind
            (lambda ()
              ((foreign-lambda void "ds_q_begin" c-pointer) rp)
+             (gl-allow! (render-gl-batching?))
              (set! batching? #t))
            thunk
            (lambda ()
@@ -1051,6 +1059,7 @@ EOF
                  (unless (eq? (texture-renderer t) r)
                    (error 'render-tile-cells! "the texture belongs to another renderer" t))
                  ((foreign-lambda void "ds_tiles_texture" int c-pointer) i (live-texture 'render-tile-cells! t))))
+             (gl-allow! (render-gl-batching?))
              (check-status 'render-tile-cells! "SDL_RenderGeometry"
                            (tile-cells rp n data (u32vector-length data) width height col0 row0
                                        c0 c1 r0 r1 order table (s32vector-length table) tw th

@@ -30,9 +30,12 @@ static void ds_tiles_texture(int i, SDL_Texture *t) {
   if (i >= 0 && i < DS_MAX_TILE_TEXTURES) ds_tile_textures[i] = t;
 }
 
+#include "shell/gl-batch.c"
+
 static long long ds_floor_half(long long v) { return v >= 0 ? v / 2 : -((-v + 1) / 2); }
 
-/* n quads of texture t whose vertices are all written, colours too. */
+/* n quads of texture t whose vertices are all written, colours too: by
+   OpenGL itself where gl-batch.c can, else by SDL. */
 static int ds_batch_send(SDL_Renderer *r, SDL_Texture *t, int n) {
   int i;
   if (n == 0 || !t) return 0;
@@ -48,6 +51,8 @@ static int ds_batch_send(SDL_Renderer *r, SDL_Texture *t, int n) {
     }
     ds_batch_indices_ready = 1;
   }
+  i = ds_gl_send(r, t, ds_batch_verts, ds_batch_indices, n);
+  if (i != 0) return i < 0 ? i : 0;
   return SDL_RenderGeometry(r, t, ds_batch_verts, n * 4, ds_batch_indices, n * 6);
 }
 
