@@ -1,7 +1,8 @@
-/* (downstroke motion)'s C: the fixnum motion kernel, steps 2-7 of
-   docs/physics.org's pipeline (and tile ground detection) for entities of
-   small fixnums. Included by motion.scm, one compilation unit with it;
-   the Scheme comments there say why it is C. */
+/* (downstroke motion)'s C: the motion kernels, steps 2-7 of
+   docs/physics.org's pipeline (and tile ground detection): the fixnum
+   kernel for entities of small fixnums and exact rationals, the flonum
+   kernel for entities of finite flonums. Included by motion.scm, one
+   compilation unit with it; the Scheme comments there say why it is C. */
 
 #include "physics/motion.h"
 #include "physics/arith.h"
