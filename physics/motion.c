@@ -333,7 +333,7 @@ static int ds_map_small(long cols, long rows, long col0, long row0, long tw, lon
    goes to them (-1). Not inlined: its frame lasts only as long as the
    call, and is no part of the C frame of the pass's walk (motion.scm's
    motion-pass), which every body spends of the nursery. */
-static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, const unsigned char *bytes, C_word map,
+static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, C_word grid, C_word map,
                                C_word flags_, C_word gravity_, C_word skips,
                                C_word x_, C_word y_, C_word w_, C_word h_,
                                C_word vx_, C_word vy_, C_word ay_, C_word on)
@@ -343,6 +343,7 @@ static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, const unsig
   int swept = (flags & DS_SWEPT) != 0, x_stopped = 0, y_stopped = 0;
   ds_num x, y, vx, vy0, ay, g, vy, x2, y2;
   long cols = 0, rows = 0, col0 = 0, row0 = 0, tw = 1, th = 1, w, h, stop;
+  const unsigned char *bytes = NULL;
   if ((flags & (DS_NOT_HERE | DS_SLOPES)) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST) ||
       !DS_SIZE(w_) || !DS_SIZE(h_) ||
       !(ds_num_of(x_, &x) && ds_num_of(y_, &y) && ds_num_of(vx_, &vx) && ds_num_of(vy_, &vy0)) ||
@@ -351,6 +352,7 @@ static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, const unsig
   w = C_unfix(w_);
   h = C_unfix(h_);
   if (has_map) {
+    bytes = C_c_u8vector(grid);         /* the u8vector's bytes, only now */
     cols = C_unfix(C_block_item(map, 0)); rows = C_unfix(C_block_item(map, 1));
     col0 = C_unfix(C_block_item(map, 2)); row0 = C_unfix(C_block_item(map, 3));
     tw = C_unfix(C_block_item(map, 4)); th = C_unfix(C_block_item(map, 5));

@@ -207,9 +207,11 @@
                     scheme-object))
 
   ;; The flonum kernel (motion.c), for bodies of flonums (and small
-  ;; fixnums), with or without a map: the same arguments.
+  ;; fixnums), with or without a map: the same arguments, but the solid
+  ;; grid (a u8vector) given as it is, read only with a map (a scene
+  ;; without one pays no conversion).
   (define flonum-motion!
-    (foreign-lambda scheme-object "ds_flonum_motion" scheme-object u8vector scheme-object
+    (foreign-lambda scheme-object "ds_flonum_motion" scheme-object scheme-object scheme-object
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object))
