@@ -1,10 +1,12 @@
-/* (downstroke motion)'s C: the fixnum motion kernel, steps 2-7 of
-   docs/physics.org's pipeline (and tile ground detection) for entities of
-   small fixnums. Included by motion.scm, one compilation unit with it;
-   the Scheme comments there say why it is C. */
+/* (downstroke motion)'s C: the motion kernels, steps 2-7 of
+   docs/physics.org's pipeline (and tile ground detection): the fixnum
+   kernel for entities of small fixnums and exact rationals, the flonum
+   kernel for entities of finite flonums. Included by motion.scm, one
+   compilation unit with it; the Scheme comments there say why it is C. */
 
 #include "physics/motion.h"
 #include "physics/arith.h"
+#include <math.h>
 
 static long ds_min(long a, long b) { return a < b ? a : b; }
 static long ds_max(long a, long b) { return a > b ? a : b; }
@@ -193,39 +195,247 @@ DS_INLINE int ds_num_put(C_word out, int slot, ds_num v, int flonum_bit) {
   return flonum_bit;
 }
 
-static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, C_word flags_, C_word gravity_, C_word skips,
+DS_INLINE ds_num ds_num_sub(ds_num a, ds_num b) {
+  ds_num r;
+  if (!a.flo && !b.flo) { r.flo = 0; r.n = a.n - b.n; }
+  else { r.flo = 1; r.d = (a.flo ? a.d : (double)a.n) - (b.flo ? b.d : (double)b.n); }
+  return r;
+}
+
+DS_INLINE ds_num ds_num_int(long n) { ds_num r; r.flo = 0; r.n = n; return r; }
+DS_INLINE int ds_num_zero(ds_num v) { return v.flo ? v.d == 0.0 : v.n == 0; }
+DS_INLINE int ds_num_positive(ds_num v) { return v.flo ? v.d > 0.0 : v.n > 0; }
+
+/* The flonums the map kernel takes: below 2^40 in magnitude, so that
+   every tile index below is a whole double well inside 2^53 and every
+   sum of two of them is exact. A body beyond is left to the readable
+   steps (whose indices there may be bignums). */
+#define DS_FLO_LIMIT 1099511627776.0
+DS_INLINE int ds_num_near(ds_num v) { return !v.flo || (v.d < DS_FLO_LIMIT && v.d > -DS_FLO_LIMIT); }
+
+/* tile-grid.scm's cell arithmetic on a fixnum or a double, as Scheme
+   computes it: floor-div for an integer; for a flonum one IEEE division
+   by the tile size, then floor or ceiling. The answer is a whole double. */
+DS_INLINE double ds_span_first(ds_num p, long tile) {     /* also cell-of */
+  return p.flo ? floor(p.d / (double)tile) : (double)ds_floor_div(p.n, tile);
+}
+DS_INLINE double ds_span_last(ds_num p, long size, long tile) {
+  return p.flo ? ceil((p.d + (double)size) / (double)tile) - 1.0
+               : (double)ds_floor_div(p.n + size - 1, tile);
+}
+DS_INLINE double ds_cell_ceiling(ds_num p, long tile) {
+  return p.flo ? ceil(p.d / (double)tile) : (double)(ds_floor_div(p.n - 1, tile) + 1);
+}
+
+/* Whether `line * tile` (an exact integer, a whole pixel) is at or past
+   `top`, compared as Scheme compares an integer with a flonum: exactly
+   (the product is well inside 2^53, so its double is exact). */
+DS_INLINE int ds_at_or_past(long at_px, ds_num top) {
+  return top.flo ? (double)at_px >= top.d : at_px >= top.n;
+}
+
+/* tile-collisions.scm's tile-stop for fixnum-or-flonum numbers: where a
+   body that moved by v (not 0) to pos stops on one axis, or 0 when no
+   solid line is in its way. start is where the frame's motion on this
+   axis started; lines and cells as in ds_tile_stop. The stop is a whole
+   pixel, a fixnum, as tile-push-pos makes it. */
+DS_INLINE int ds_flo_tile_stop(ds_num v, ds_num pos, long size, ds_num across, long across_size,
+                               int swept, ds_num start, int one_way, long tile, long tile_across,
+                               const unsigned char *bytes, long ls, long cs, long line_origin,
+                               long cell_origin, long line_count, long cell_count, long *stop)
+{
+  int forward = ds_num_positive(v);
+  double l0 = ds_span_first(pos, tile), l1 = ds_span_last(pos, size, tile);
+  double lo = ds_span_first(across, tile_across) - (double)cell_origin;
+  double hi = ds_span_last(across, across_size, tile_across) - (double)cell_origin;
+  ds_num top = one_way ? ds_num_add(start, ds_num_int(size)) : ds_num_int(0);
+  double from, to;
+  long line, cell, ilo, ihi, ifrom, ito;
+  if (forward) {
+    from = l0;
+    if (swept) { double s = ds_span_first(ds_num_add(start, ds_num_int(size)), tile); if (s < from) from = s; }
+    to = l1;
+  } else {
+    from = l1;
+    if (swept) { double s = ds_cell_ceiling(start, tile) - 1.0; if (s > from) from = s; }
+    to = l0;
+  }
+  from -= (double)line_origin;
+  to -= (double)line_origin;
+  if (lo < 0.0) lo = 0.0;
+  if (hi > (double)(cell_count - 1)) hi = (double)(cell_count - 1);
+  if (forward) { if (from < 0.0) from = 0.0; if (to > (double)(line_count - 1)) to = (double)(line_count - 1); }
+  else { if (from > (double)(line_count - 1)) from = (double)(line_count - 1); if (to < 0.0) to = 0.0; }
+  if (lo > hi || (forward ? from > to : from < to)) return 0;
+  ilo = (long)lo; ihi = (long)hi; ifrom = (long)from; ito = (long)to;
+  for (line = ifrom; ; line += forward ? 1 : -1) {
+    const unsigned char *base = bytes + line * ls;
+    for (cell = ilo; cell <= ihi; cell++)
+      if (base[cell * cs] &&
+          (base[cell * cs] == 1 ||
+           (one_way && DS_ONE_WAY(base[cell * cs]) && ds_at_or_past((line + line_origin) * tile, top)))) {
+        long at = line + line_origin;
+        *stop = forward ? at * tile - size : (at + 1) * tile;
+        return 1;
+      }
+    if (line == ito) return 0;
+  }
+}
+
+/* The grid byte of the cell (col, row), whole doubles: 0 outside the map. */
+DS_INLINE int ds_cell_at(const unsigned char *bytes, long cols, long rows, long col0, long row0,
+                         double col, double row)
+{
+  double c = col - (double)col0, r = row - (double)row0;
+  return c >= 0.0 && c < (double)cols && r >= 0.0 && r < (double)rows ? bytes[(long)r * cols + (long)c] : 0;
+}
+
+/* Whether the box [x, x + w) x [y, y + h) covers a solid cell (byte 1):
+   the escape's question (escape.scm), whose answer the kernel leaves to it. */
+DS_INLINE int ds_flo_box_solid(const unsigned char *bytes, long cols, long rows, long col0, long row0,
+                               long tw, long th, ds_num x, long w, ds_num y, long h)
+{
+  double c0 = ds_span_first(x, tw) - (double)col0, c1 = ds_span_last(x, w, tw) - (double)col0;
+  double r0 = ds_span_first(y, th) - (double)row0, r1 = ds_span_last(y, h, th) - (double)row0;
+  long r, c;
+  if (c0 < 0.0) c0 = 0.0;
+  if (r0 < 0.0) r0 = 0.0;
+  if (c1 > (double)(cols - 1)) c1 = (double)(cols - 1);
+  if (r1 > (double)(rows - 1)) r1 = (double)(rows - 1);
+  if (c0 > c1 || r0 > r1) return 0;
+  for (r = (long)r0; r <= (long)r1; r++)
+    for (c = (long)c0; c <= (long)c1; c++)
+      if (bytes[r * cols + c] == 1) return 1;
+  return 0;
+}
+
+/* Whether a map's tile stops, in whole pixels, stay small fixnums: every
+   line of cells inside the map, times the tile size, within DS_LIMIT
+   (with room for a body's size), on both axes. */
+static int ds_map_small(long cols, long rows, long col0, long row0, long tw, long th) {
+  double reach_x = (fabs((double)col0) + (double)cols + 1.0) * (double)tw;
+  double reach_y = (fabs((double)row0) + (double)rows + 1.0) * (double)th;
+  return tw > 0 && th > 0 && reach_x < (double)DS_LIMIT / 2 && reach_y < (double)DS_LIMIT / 2;
+}
+
+/* The flonum kernel: an entity the fixnum kernel leaves whose position,
+   velocities, acceleration and gravity are finite flonums or small
+   fixnums, and whose size is a small fixnum. Without a map: the
+   velocity steps. With one (bytes and map as for ds_fixnum_motion): the
+   tile steps too, discrete or swept, as tile-collisions.scm takes them
+   on a map without slopes; a map with slopes, a body inside solid tiles
+   at the start of a swept frame (the escape's), a number beyond
+   DS_FLO_LIMIT, is left to the readable steps (-1). Each number is a
+   fixnum or a double, and each operation is taken as CHICKEN's generic
+   one takes it: two fixnums exactly, else both as doubles, in the
+   readable steps' order, so every double is the one the readable steps
+   make. A sum that is not finite is their error to raise: the entity
+   goes to them (-1). Not inlined: its frame lasts only as long as the
+   call, and is no part of the C frame of the pass's walk (motion.scm's
+   motion-pass), which every body spends of the nursery. */
+static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, C_word grid, C_word map,
+                               C_word flags_, C_word gravity_, C_word skips,
                                C_word x_, C_word y_, C_word w_, C_word h_,
                                C_word vx_, C_word vy_, C_word ay_, C_word on)
 {
   long flags = C_unfix(flags_);
-  int grav = (flags & DS_GRAVITY) != 0, writes = 0;
+  int grav = (flags & DS_GRAVITY) != 0, has_map = (flags & DS_HAS_MAP) != 0, writes = 0;
+  int swept = (flags & DS_SWEPT) != 0, x_stopped = 0, y_stopped = 0;
   ds_num x, y, vx, vy0, ay, g, vy, x2, y2;
-  if ((flags & (DS_HAS_MAP | DS_NOT_HERE)) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST) ||
+  long cols = 0, rows = 0, col0 = 0, row0 = 0, tw = 1, th = 1, w, h, stop;
+  const unsigned char *bytes = NULL;
+  if ((flags & (DS_NOT_HERE | DS_SLOPES)) || (skips != C_SCHEME_FALSE && skips != C_SCHEME_END_OF_LIST) ||
       !DS_SIZE(w_) || !DS_SIZE(h_) ||
       !(ds_num_of(x_, &x) && ds_num_of(y_, &y) && ds_num_of(vx_, &vx) && ds_num_of(vy_, &vy0)) ||
       (grav && !(ds_num_of(ay_, &ay) && ds_num_of(gravity_, &g))))
     return C_fix(-1);
+  w = C_unfix(w_);
+  h = C_unfix(h_);
+  if (has_map) {
+    bytes = C_c_u8vector(grid);         /* the u8vector's bytes, only now */
+    cols = C_unfix(C_block_item(map, 0)); rows = C_unfix(C_block_item(map, 1));
+    col0 = C_unfix(C_block_item(map, 2)); row0 = C_unfix(C_block_item(map, 3));
+    tw = C_unfix(C_block_item(map, 4)); th = C_unfix(C_block_item(map, 5));
+    if (!ds_map_small(cols, rows, col0, row0, tw, th) || !ds_num_near(x) || !ds_num_near(y))
+      return C_fix(-1);
+  }
   /* acceleration: an #:ay of fixnum 0 that is present is nothing to consume */
   int accelerate = grav && !(ay_ == C_fix(0) && (flags & DS_HAS_AY));
   vy = accelerate ? ds_num_add(vy0, ay) : vy0;
   if (grav) vy = ds_num_add(vy, g);
   x2 = ds_num_add(x, vx);
+  if (vy.flo && vy.d - vy.d != 0.0) return C_fix(-1);
+  if (has_map) {
+    ds_num sx;
+    if (!ds_num_near(x2)) return C_fix(-1);
+    /* the x pass: a swept body that moves first leaves solid tiles from
+       where its frame started, (x2 - vx, y + 0) (leave-solids): the
+       kernel takes only a body already out of them, which the escape
+       leaves where it is, and not a y of -0.0, which y + 0 would make
+       0.0 there */
+    sx = ds_num_sub(x2, vx);
+    if (swept && !(ds_num_zero(vx) && ds_num_zero(vy)) &&
+        ((y.flo && y.d == 0.0 && signbit(y.d)) || !ds_num_near(sx) ||
+         ds_flo_box_solid(bytes, cols, rows, col0, row0, tw, th, sx, w, y, h)))
+      return C_fix(-1);
+    if (!ds_num_zero(vx) &&
+        ds_flo_tile_stop(vx, x2, w, y, h, swept, sx, 0, tw, th, bytes, 1, cols, col0, row0, cols, rows,
+                         &stop)) {
+      x_stopped = 1;
+      x2 = ds_num_int(stop);
+    }
+  }
   y2 = ds_num_add(y, vy);
-  if ((vy.flo && vy.d - vy.d != 0.0) || (x2.flo && x2.d - x2.d != 0.0) ||
-      (y2.flo && y2.d - y2.d != 0.0))
+  if ((x2.flo && x2.d - x2.d != 0.0) || (y2.flo && y2.d - y2.d != 0.0))
     return C_fix(-1);
+  if (has_map) {
+    /* the y pass, from y2 - vy, where this frame's y motion started */
+    ds_num sy = ds_num_sub(y2, vy);
+    if (!ds_num_near(y2) || !ds_num_near(sy)) return C_fix(-1);
+    if (!ds_num_zero(vy) &&
+        ds_flo_tile_stop(vy, y2, h, x2, w, swept, sy, ds_num_positive(vy) && !(flags & DS_DROP), th, tw,
+                         bytes, cols, 1, row0, col0, rows, cols, &stop)) {
+      y_stopped = 1;
+      y2 = ds_num_int(stop);
+    }
+  }
+  /* ground detection (step 8), on the tiles only: with ground? no entity
+     is solid. The row one pixel below the feet, (y + h) + 1, under either
+     lower corner (tile-collisions.scm's box-ground?). */
+  C_word ground = C_SCHEME_FALSE;
+  if ((flags & DS_GROUND) && grav && has_map) {
+    ds_num bottom = ds_num_add(y2, ds_num_int(h));
+    double row = ds_span_first(ds_num_add(bottom, ds_num_int(1)), th);
+    double c0 = ds_span_first(x2, tw), c1 = ds_span_last(x2, w, tw);
+    int b0, b1;
+    if (c1 < c0) c1 = c0;
+    b0 = ds_cell_at(bytes, cols, rows, col0, row0, c0, row);
+    b1 = b0 == 1 ? 0 : ds_cell_at(bytes, cols, rows, col0, row0, c1, row);
+    /* a one-way tile holds a body whose bottom is at or above its top;
+       such a cell is inside the map, so row * th is a small fixnum */
+    ground = C_mk_bool(b0 == 1 || b1 == 1 ||
+                       ((DS_ONE_WAY(b0) || DS_ONE_WAY(b1)) && !(flags & DS_DROP) &&
+                        (bottom.flo ? bottom.d <= (double)((long)row * th) : bottom.n <= (long)row * th)));
+  }
   if (!((flags & DS_HAS_X) && ds_num_is(x_, x2)))
     writes |= DS_WRITE_X | ds_num_put(out, 0, x2, DS_X_FLONUM);
   if (!((flags & DS_HAS_Y) && ds_num_is(y_, y2)))
     writes |= DS_WRITE_Y | ds_num_put(out, 1, y2, DS_Y_FLONUM);
-  if (grav && !((flags & DS_HAS_VY) && ds_num_is(vy_, vy)))
-    writes |= DS_WRITE_VY | ds_num_put(out, 3, vy, DS_VY_FLONUM);
+  if (x_stopped && !((flags & DS_HAS_VX) && vx_ == C_fix(0))) {
+    C_set_block_item(out, 2, C_fix(0));
+    writes |= DS_WRITE_VX;
+  }
+  if (y_stopped || grav) {
+    ds_num v = y_stopped ? ds_num_int(0) : vy;
+    if (!((flags & DS_HAS_VY) && ds_num_is(vy_, v)))
+      writes |= DS_WRITE_VY | ds_num_put(out, 3, v, DS_VY_FLONUM);
+  }
   if (accelerate) {                    /* consumed: a fixnum 0 */
     C_set_block_item(out, 4, C_fix(0));
     writes |= DS_WRITE_AY;
   }
-  if ((flags & DS_GROUND) && grav && !((flags & DS_HAS_ON) && on == C_SCHEME_FALSE)) {
-    C_set_block_item(out, 5, C_SCHEME_FALSE);   /* no map, and no solid entity */
+  if ((flags & DS_GROUND) && grav && !((flags & DS_HAS_ON) && on == ground)) {
+    C_set_block_item(out, 5, ground);   /* without a map: no tile, and no solid entity */
     writes |= DS_WRITE_ON;
   }
   return C_fix(writes);

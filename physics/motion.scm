@@ -206,12 +206,15 @@
                     scheme-object scheme-object scheme-object scheme-object scheme-object
                     scheme-object))
 
-  ;; The flonum kernel (motion.c), for scenes without a map: the same
-  ;; arguments but the map's.
+  ;; The flonum kernel (motion.c), for bodies of flonums (and small
+  ;; fixnums), with or without a map: the same arguments, but the solid
+  ;; grid (a u8vector) given as it is, read only with a map (a scene
+  ;; without one pays no conversion).
   (define flonum-motion!
-    (foreign-lambda scheme-object "ds_flonum_motion" scheme-object scheme-object
+    (foreign-lambda scheme-object "ds_flonum_motion" scheme-object scheme-object scheme-object
                     scheme-object scheme-object scheme-object scheme-object scheme-object
-                    scheme-object scheme-object scheme-object scheme-object scheme-object))
+                    scheme-object scheme-object scheme-object scheme-object scheme-object
+                    scheme-object))
 
   ;; A kernel's answer for x, y or vy: 'keep; with the flonum bit the
   ;; double the flonum kernel left in its slot n-slot (motion.c); with the
@@ -285,7 +288,8 @@
        (or (and controls? (or (has-controls? e) (assq #:bounce e)))
            (and climbers? (climbing? e))))))
 
-  ;; The entities fixnum-motion! has declined since the program started.
+  ;; The entities both kernels have left to the readable steps since the
+  ;; program started (not counting those readable-only? sends there).
   (define declines 0)
   (define (motion-kernel-declines) declines)
 
@@ -301,9 +305,10 @@
   ;; entity whose numbers the kernel takes (above), with no
   ;; #:skip-pipelines, then goes through fixnum-motion!; any other one
   ;; (flonums, other rationals, bignums, a NaN, skips, an unknown mode)
-  ;; through motion-steps, the readable steps, except that in a scene
-  ;; without a map one the fixnum kernel refuses is offered to
-  ;; flonum-motion! first, with what the same walk read.
+  ;; through motion-steps, the readable steps, except that one the
+  ;; fixnum kernel refuses is offered to flonum-motion! first (finite
+  ;; flonums and small fixnums, with or without a map), with what the
+  ;; same walk read.
   ;; With ground? the pass also does ground detection (step 8), which
   ;; is only right when no entity of the scene is solid: the engine passes
   ;; it then, and only then.
@@ -344,16 +349,15 @@
                                                x y w h vx vy ay on)))
                   (cond ((fx= writes 0) e)
                         ((fx< writes 0)
-                         (set! declines (fx+ declines 1))
-                         ;; without a map, the flonum kernel's turn (it
-                         ;; refuses what is not its, at once)
-                         (if (fx= 0 (fxand flags flag-map))
-                             (let ((writes (flonum-motion! out flags gravity skips
-                                                           x y w h vx vy ay on)))
-                               (cond ((fx= writes 0) e)
-                                     ((fx< writes 0) (general e))
-                                     (else (rewrite-made e grav writes out xp yp vxp vyp ayp onp))))
-                             (general e)))
+                         ;; the flonum kernel's turn (it refuses what is
+                         ;; not its, at once)
+                         (let ((writes (flonum-motion! out bytes map flags gravity skips
+                                                       x y w h vx vy ay on)))
+                           (cond ((fx= writes 0) e)
+                                 ((fx< writes 0)
+                                  (set! declines (fx+ declines 1))
+                                  (general e))
+                                 (else (rewrite-made e grav writes out xp yp vxp vyp ayp onp)))))
                         ((fx= 0 (fxand writes (fxior x-ratio y-ratio)))
                          (rewrite-motion e grav
                                          xp (if (fx= 0 (fxand writes write-x)) 'keep (vector-ref out 0))
