@@ -8,12 +8,15 @@
 (module (downstroke escape)
   (tile-way-out
    ;; for sibling modules only: where the escape puts a body
-   escape-place)
+   escape-place
+   ;; for tests only: escape.c's answer, and the search with it or without
+   straight-in-c search-way-out)
 
   (import scheme (chicken base) (chicken fixnum) (chicken sort) (chicken foreign) srfi-4
           (downstroke map) (downstroke tile-grid))
 
   (foreign-declare "#include <math.h>")
+  (foreign-declare "#include \"physics/escape.c\"")
 
   ;; The shortest move out of solid tiles, as two values dx dy (0 0 for
   ;; a box in none): where escape-place puts the box, less where it was.
@@ -30,14 +33,18 @@
   ;; at a time in the direction of its move, until the box, computed in
   ;; flonums as the tile passes compute it, covers no solid tile (at most
   ;; a few steps), so the tile passes that follow never see it inside.
-  (define (escape-place tm x y w h)
-    (let-values (((dx dy) (search-way-out tm x y w h)))
+  ;; c? #f: without escape.c (tests compare the two).
+  (define (escape-place tm x y w h #!optional (c? #t))
+    (let-values (((dx dy) (search-way-out tm x y w h c?)))
       (if (and (eqv? dx 0) (eqv? dy 0))
           (values x y)
           (let ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm)) (rows (row-grid tm)))
             (define (free? x y)
-              (not (nearest-solid-line rows (span-first y th) (span-last y h th) 1
-                                       (span-first x tw) (span-last x w tw))))
+              (let ((known (and c? (straight-in-c tm x y w h #f))))
+                (if known
+                    (eq? known #t)
+                    (not (nearest-solid-line rows (span-first y th) (span-last y h th) 1
+                                             (span-first x tw) (span-last x w tw))))))
             (let settle ((nx (+ x dx)) (ny (+ y dy)) (tries 0))
               (if (or (fx= tries 8) (free? nx ny))
                   (values nx ny)
@@ -51,6 +58,22 @@
           ((negative? d) (next-flonum p -inf.0))
           (else (next-flonum p +inf.0))))
 
+  ;; What escape.c says of the box: #f when its numbers are not for it
+  ;; (then the Scheme below decides), #t when the box covers no solid
+  ;; tile; else, with race? #f, 0, and with race? #t the winner of
+  ;; shortest-straight's race as 4 line + i (runner i, ended by tile line
+  ;; `line`). It is the first part of the search in C: most bodies a
+  ;; crowd pushes into a wall leave by a straight move, and the search
+  ;; in generic arithmetic costs tens of thousands of instructions where
+  ;; this costs hundreds (docs/performance.org, "The escape in C"). Only
+  ;; its decisions come from C: the move's numbers are made below.
+  (define straight-in-c
+    (let ((race (foreign-lambda scheme-object "ds_escape_straight" u8vector scheme-object scheme-object
+                                scheme-object scheme-object scheme-object scheme-object scheme-object)))
+      (lambda (tm x y w h race?)
+        (let ((m (pass-map tm)) (bytes (tilemap-solid-grid tm)))
+          (and m (race bytes (u8vector-length bytes) m race? x y w h))))))
+
   ;; The shortest move (dx, dy) that takes the box at (x, y) of w x h out
   ;; of every solid tile (one-way tiles do not count): 0 0 when it is in
   ;; none. A box sunk into a floor goes up; one in a corner between a wall
@@ -63,10 +86,24 @@
   ;; prefer the straight moves in that order, then less sideways motion.
   ;; The search (nearest-free-pair) gives what trying every pair of
   ;; candidates, x candidates outside and y candidates inside, would give,
-  ;; in time that grows with the candidates, not with their pairs.
-  (define (search-way-out tm x y w h)
+  ;; in time that grows with the candidates, not with their pairs. The
+  ;; test whether the box is free and the race of the straight moves are
+  ;; asked of escape.c first (straight-in-c), unless c? is #f.
+  (define (search-way-out tm x y w h #!optional (c? #t))
     (let* ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm))
            (rows (row-grid tm)) (cols (column-grid tm)))
+      ;; where straight move i puts the box's coordinate on its axis when
+      ;; tile line `line` blocks it: past that line
+      (define (runner-place i line)
+        (case i
+          ((0) (- (* line th) h))
+          ((1) (* (+ line 1) th))
+          ((2) (- (* line tw) w))
+          (else (* (+ line 1) tw))))
+      ;; the move of runner i, stopped last by `line`
+      (define (runner-move i line)
+        (let ((p (runner-place i line)))
+          (if (fx< i 2) (cons 0 (- p y)) (cons (- p x) 0))))
       ;; the solid line of a box nearest its side `toward` (+1: the far
       ;; side), along the axis of `grid`; #f when the box is free
       (define (blocking grid pos size across across-size tile tile-across toward)
@@ -98,20 +135,19 @@
                                 ((0 1) (blocking rows p h x w th tw (if (fx= i 0) 1 -1)))
                                 (else (blocking cols p w y h tw th (if (fx= i 2) 1 -1))))))
                     (if line
-                        (vector-set! at i (case i
-                                            ((0) (- (* line th) h))
-                                            ((1) (* (+ line 1) th))
-                                            ((2) (- (* line tw) w))
-                                            (else (* (+ line 1) tw))))
+                        (vector-set! at i (runner-place i line))
                         (vector-set! done i #t))
                     (race)))))))
-      (if (free? x y)
+      (let ((known (and c? (straight-in-c tm x y w h #t))))
+        (if (or (eq? known #t) (and (not known) (free? x y)))
           (values 0 0)
-          (let* ((best (shortest-straight))
+          (let* ((best (if known
+                           (runner-move (fxand known 3) (fxshr known 2))
+                           (shortest-straight)))
                  (best (if (diagonal-may-be-nearer? best x y w h tw th)
                            (nearest-free-pair tm x y w h best (sqrt-ceiling (norm2 best)))
                            best)))
-            (values (car best) (cdr best))))))
+            (values (car best) (cdr best)))))))
 
   ;; Whether a move on both axes at once could be nearer than `best`, the
   ;; nearest straight move (one of its two offsets is 0), of length d:

@@ -31,7 +31,7 @@
             (except (downstroke tile-grid)
                     ->integer cell-of cell-ceiling span-first span-last nearest-solid-line grids
                     column-grid row-grid pass-map one-way-map?)
-            (except (downstroke escape) escape-place)
+            (except (downstroke escape) escape-place straight-in-c search-way-out)
             (except (downstroke tile-collisions)
                     swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing? slope-cut-of ceiling-cut-of)
             (downstroke contacts) (except (downstroke motion) motion-kernel-declines)

@@ -6,7 +6,8 @@
 (import scheme (chicken base) (chicken format) (chicken process-context) (downstroke test) (downstroke entity)
         (downstroke tilemap) (downstroke scene) (downstroke pipeline) (downstroke util)
         (chicken sort) srfi-4 (only (downstroke tween) make-tween) (only (downstroke physics) *gravity* tile-way-out entity-cell-span)
-        (only (downstroke tile-grid) grids))
+        (only (downstroke tile-grid) grids) (only (downstroke escape) escape-place straight-in-c search-way-out)
+        (chicken condition))
 
 (include-relative "../../tests/bounded-support.scm")
 
@@ -444,3 +445,110 @@
                   'swept (es-ent #:x 28 #:y 52 #:width 4 #:height 8 #:vx 4 #:vy 0
                                  #:tween (make-tween (list (cons #:z 0)) props: '((#:z . 10)) duration: 160))
                   xyv)))
+
+;;; The first part of the search in C (escape.c): whether the box is free
+;;; and which straight move wins. Wherever it answers, the escape must
+;;; give exactly what the Scheme search gives (the same move, the same
+;;; numbers, exact or flonum alike); where it cannot take the numbers it
+;;; declines (#f) and the Scheme search answers.
+
+;; whether fixnums are 64-bit, read at run time (a literal would be
+;; folded by the compiler of a cross build)
+(define es-wide-fixnums? (fixnum? (string->number "1099511627776")))
+
+;; escape-place's answer with escape.c or without, or 'error
+(define (es-place tm x y w h c?)
+  (condition-case (call-with-values (lambda () (escape-place tm x y w h c?)) list)
+    (e () 'error)))
+(define (es-search tm x y w h c?)
+  (condition-case (call-with-values (lambda () (search-way-out tm x y w h c?)) list)
+    (e () 'error)))
+
+(test-group "escape in C: the same answer as the Scheme search, on random boxes in and near solid tiles"
+  (define seed 2929)
+  (define (rnd n) (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648)) (modulo (quotient seed 16) n))
+  (define (pick . xs) (list-ref xs (rnd (length xs))))
+  (define specials (list +nan.0 +inf.0 -inf.0 1.7e308 -1.7e308 4503599627370496. 9007199254740992.
+                         4503599627370496 9007199254740992 16777215 16777216 -16777215 1e-300 -0.0))
+  ;; a number near v: an integer, a quarter pixel, a flonum, a rational
+  ;; with a long denominator, a flonum that ends on a pixel, or a rare
+  ;; special one
+  (define (number-near v)
+    (case (rnd 12)
+      ((0 1 2) v)
+      ((3) (+ v (/ (rnd 4) 4)))
+      ((4 5 6) (+ v (/ (rnd 1000) 997.)))
+      ((7) (+ v (/ (rnd 1000) (+ 1 (expt 2 (+ 3 (rnd 52)))))))
+      ((8) (exact->inexact v))
+      ((9) (+ v (/ (rnd 7) 7)))
+      ((10) (+ v (* 1e-13 (- (rnd 3) 1))))
+      (else (if (= 0 (rnd 8)) (list-ref specials (rnd (length specials))) v))))
+  ;; flonum sizes are eighths: with a size that rounds (12.0431...), a
+  ;; move up to a line's top less the size can round back into that line,
+  ;; and the Scheme search then never ends (escape.c gives up after a
+  ;; bounded number of steps and declines)
+  (define (size-near v) (case (rnd 4) ((0 1) v) ((2) (+ v (/ (rnd 8) 8.))) (else (exact->inexact v))))
+  (let loop ((k 0) (differ '()) (taken 0) (moved 0) (declined 0))
+    (if (= k 6000)
+        (begin
+          (test-assert (sprintf "escape.c took ~a of 6000 boxes (~a of them moved), declined ~a" taken moved declined)
+                       (and (> taken 3000) (> moved 1500) (> declined 100)))
+          (test "no box differs, by search-way-out or escape-place" '() differ))
+        (let* ((cols (+ 1 (rnd 12))) (rows (+ 1 (rnd 12)))
+               (tw (pick 16 16 8 7 1 3)) (th (pick 16 16 8 5 3 1))
+               (col0 (pick 0 0 -3 4)) (row0 (pick 0 0 -2 5))
+               (fill (pick 2 3 5 8))
+               (tm (es-map (let r ((j 0))
+                             (if (= j rows) '()
+                                 (cons (let c ((i 0))
+                                         (if (= i cols) '()
+                                             (cons (case (rnd fill) ((0 1) 1) ((2) (if (= 0 (rnd 4)) 2 0)) (else 0))
+                                                   (c (+ i 1)))))
+                                       (r (+ j 1)))))
+                           tw th col0 row0))
+               (w (size-near (pick 0 1 (rnd (* 3 tw)) tw (* 2 tw) (rnd 40))))
+               (h (size-near (pick 0 1 (rnd (* 3 th)) th (* 2 th) (rnd 40))))
+               (x (number-near (+ (* col0 tw) (- (rnd (* (+ cols 3) tw)) (* 2 tw)))))
+               (y (number-near (+ (* row0 th) (- (rnd (* (+ rows 3) th)) (* 2 th)))))
+               (known (condition-case (straight-in-c tm x y w h #t) (e () 'error)))
+               (c-way (es-search tm x y w h #t)) (s-way (es-search tm x y w h #f))
+               (c-place (es-place tm x y w h #t)) (s-place (es-place tm x y w h #f)))
+          (loop (+ k 1)
+                (if (and (equal? c-way s-way) (equal? c-place s-place))
+                    differ
+                    (cons (list 'map tw th col0 row0 'box x y w h 'c c-way c-place 'scheme s-way s-place) differ))
+                (if (or (eq? known #t) (fixnum? known)) (+ taken 1) taken)
+                (if (fixnum? known) (+ moved 1) moved)
+                (if known declined (+ declined 1)))))))
+
+(test-group "escape in C: what it takes and what it leaves to the Scheme search"
+  ;; 16 px tiles: a floor in row 1 (y 16 to 32), four columns wide
+  (define floor-map (list->tilemap '((0 0 0 0) (1 1 1 1) (0 0 0 0))))
+  (define (c x y w h) (straight-in-c floor-map x y w h #t))
+  ;; a box 10 x 10 at (20, 18), inside the floor: 12 px below its top,
+  ;; 14 above its bottom: up (runner 0), ended by row 1
+  (test "integers: up, ended by row 1" (+ (* 4 1) 0) (c 20 18 10 10))
+  (test "the move is exact" '(0 -12) (es-way-out floor-map 20 18 10 10))
+  (test "flonums: the same race" (+ (* 4 1) 0) (c 20.5 18.25 10 10.))
+  (test "the move is a flonum" '(0 -12.25) (es-way-out floor-map 20.5 18.25 10 10.))
+  (test "2 px lower, down is nearer: runner 1, ended by row 1" (+ (* 4 1) 1) (c 20 20 10 10))
+  (test "a box in no solid tile: #t" #t (c 20 0 10 10))
+  (test "race? #f: 0 for a box in a solid tile" 0 (straight-in-c floor-map 20 20 10 10 #f))
+  (test "a rational of fixnums on a 64-bit build, else left to Scheme"
+        (if es-wide-fixnums? 4 #f) (c 20 37/2 10 10))
+  (test "the move is exact" '(0 -25/2) (es-way-out floor-map 20 37/2 10 10))
+  (test "a rational with a flonum: left to Scheme" #f (c 20.5 37/2 10 10))
+  (test "a rational whose denominator is 2^48 or more: left to Scheme" #f
+        (c 20 (+ 20 (/ 1 (expt 2 48))) 10 10))
+  (test "a bignum rational: left to Scheme" #f (c 20 (+ 20 (/ 1 (expt 3 70))) 10 10))
+  (test "a NaN: left to Scheme" #f (c +nan.0 20 10 10))
+  (test "an infinity: left to Scheme" #f (c 20 -inf.0 10 10))
+  (test "a size that is an infinity: left to Scheme" #f (c 20 20 +inf.0 10))
+  (test "a negative size: left to Scheme" #f (c 20 20 -1 10))
+  (test "an integer of 2^24 or more: left to Scheme" #f (c 16777216 20 10 10))
+  (test "a bignum: left to Scheme" #f (c (expt 2 80) 20 10 10))
+  (test "1.7e308, far outside the map: free" #t (c 1.7e308 20 10 10))
+  (test "a size of 1.7e308 across the floor: up" (+ (* 4 1) 0) (c 20 18 1.7e308 10))
+  (test "not a number: left to Scheme" #f (c 'a 20 10 10))
+  (test "a map too large for its numbers: left to Scheme" #f
+        (straight-in-c (es-map '((1 1) (1 1)) 16 16 (expt 2 21) 0) 0 0 10 10 #t)))
