@@ -20,10 +20,10 @@ static const C_word ds_need_of_key[DS_NEED_KEYS] = {
 
 static C_word ds_pipeline_needs(C_word entities, C_word keys) {
   C_word es, ps, p, k, bits = 0;
-  C_uword mask = 0;
+  ds_key_table t;
   int i, solid, solids = 0;
   if (C_header_size(keys) != DS_NEED_KEYS) return C_fix(-1);
-  for (i = 0; i < DS_NEED_KEYS; i++) mask |= DS_KEY_BIT(C_block_item(keys, i));
+  ds_key_table_init(&t, keys, DS_NEED_KEYS);
   for (es = entities; es != C_SCHEME_END_OF_LIST; es = C_block_item(es, 1)) {
     if (!C_truep(C_i_pairp(es))) return C_fix(-1);
     solid = 0;
@@ -32,12 +32,8 @@ static C_word ds_pipeline_needs(C_word entities, C_word keys) {
       p = C_block_item(ps, 0);
       if (!C_truep(C_i_pairp(p))) return C_fix(-1);
       k = C_block_item(p, 0);
-      if (!(mask & DS_KEY_BIT(k)) || C_block_item(p, 1) == C_SCHEME_FALSE) continue;
-      for (i = 0; i < DS_NEED_KEYS; i++)
-        if (k == C_block_item(keys, i)) {
-          if (i == DS_KEY_SOLID) solid = 1; else bits |= ds_need_of_key[i];
-          break;
-        }
+      if ((i = ds_key_index(&t, keys, DS_NEED_KEYS, k)) < 0 || C_block_item(p, 1) == C_SCHEME_FALSE) continue;
+      if (i == DS_KEY_SOLID) solid = 1; else bits |= ds_need_of_key[i];
     }
     if (solid && solids < 2) solids++;
   }

@@ -7,32 +7,10 @@
    is held with a value other than #f, or -1 when the alist is not a list
    of pairs (the caller then reads it with entity-ref, which raises the
    error). Most keys of an entity are none of `keys` and fail the first
-   test, DS_KEY_BIT's mask (core/entity.h). */
+   test, the mask of a ds_key_table (core/entity.h). */
 #include "core/entity.h"
 
 #define DS_MAX_DRAWN_KEYS 30
-
-/* What a walk knows of its keys, made once per call (keywords do not
-   move while it runs): the mask of their DS_KEY_BITs, and for each bit
-   the one key that has it (-1: none; -2: several, searched in turn). */
-typedef struct {
-  C_uword mask;
-  signed char slot[C_WORD_SIZE];
-} ds_key_table;
-
-#define DS_KEY_SLOT(k) ((((C_uword)(k)) >> 4) & (C_WORD_SIZE - 1))
-
-static void ds_key_table_init(ds_key_table *t, C_word keys, int n) {
-  int i;
-  t->mask = 0;
-  for (i = 0; i < C_WORD_SIZE; i++) t->slot[i] = -1;
-  for (i = 0; i < n; i++) {
-    C_word k = C_block_item(keys, i);
-    int s = (int)DS_KEY_SLOT(k);
-    t->mask |= DS_KEY_BIT(k);
-    t->slot[s] = t->slot[s] == -1 ? (signed char)i : -2;
-  }
-}
 
 /* The walk itself, into a C array out[0..n) (n at most
    DS_MAX_DRAWN_KEYS), with the table of the same keys: shell/sprites.c
@@ -47,14 +25,7 @@ static C_word ds_read_keys_with(const ds_key_table *t, C_word alist, C_word keys
     p = C_block_item(ps, 0);
     if (C_immediatep(p) || !C_truep(C_i_pairp(p))) return -1;
     k = C_block_item(p, 0);
-    if (!(t->mask & DS_KEY_BIT(k))) continue;
-    i = t->slot[DS_KEY_SLOT(k)];
-    if (i >= 0) {
-      if (C_block_item(keys, i) != k) continue;
-    } else {
-      for (i = 0; i < n && C_block_item(keys, i) != k; i++);
-      if (i == n) continue;
-    }
+    if ((i = ds_key_index(t, keys, n, k)) < 0) continue;
     if (!(seen & ((C_word)1 << i))) {
       seen |= (C_word)1 << i;
       if (C_block_item(p, 1) != C_SCHEME_FALSE) {
