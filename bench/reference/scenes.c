@@ -6,7 +6,7 @@
    scene (tests/bench-reference-test.scm compares them). Only the rules
    these scenes use are here: no slopes, one-way tiles, immovable bodies
    or tweens. Built by the Makefile as build/bench-reference:
-     bench-reference [--runs R] [--csv FILE] [--n N] [--mode M]
+     bench-reference [--runs R] [--csv FILE] [--quick] [--n N] [--mode M]
                      [--warm-up W] [--frames F] [S1 S2]
    S1 runs its two tile modes, discrete and swept (docs/physics.org,
    "Collision modes"); S2 runs with flonum positions, bench/scenes.scm's
@@ -351,7 +351,7 @@ static void report(const char *scene, const char *mode, long n, long frames, dou
   snprintf(csv + used, sizeof csv - used, "%s,%s,%ld,,%ld,%s,%s,,\n", scene, mode, n, frames, a, b);
 }
 
-static int warm_up = -1, frames = -1, runs = 3;
+static int warm_up = -1, frames = -1, runs = 3, quick = 0;
 static long only_n = 0;
 static const char *only_mode = NULL;
 
@@ -412,7 +412,7 @@ static void run_s2(long n) {
 }
 
 static void usage(void) {
-  fprintf(stderr, "usage: bench-reference [--runs R] [--csv FILE] [--n N] [--mode M] "
+  fprintf(stderr, "usage: bench-reference [--runs R] [--csv FILE] [--quick] [--n N] [--mode M] "
                   "[--warm-up W] [--frames F] [S1 S2]\n");
   exit(2);
 }
@@ -429,12 +429,16 @@ static long number(const char *flag, const char *s, long lo, long hi) {
 }
 
 int main(int argc, char **argv) {
-  const char *csv_file = "bench/reference-results.csv";
+  const char *csv_file = "bench/reference/results.csv";
   int s1 = 0, s2 = 0, named = 0;
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (strcmp(a, "S1") == 0) { s1 = 1; named = 1; }
     else if (strcmp(a, "S2") == 0) { s2 = 1; named = 1; }
+    /* bench-scenes' other scenes and --quick: make bench passes the same
+       BENCH_ARGS to both programs */
+    else if (strcmp(a, "steps") == 0 || (a[0] == 'S' && a[1] >= '3' && a[1] <= '7' && !a[2])) named = 1;
+    else if (strcmp(a, "--quick") == 0) quick = 1;
     else if (!v) usage();
     else if (strcmp(a, "--runs") == 0) { runs = (int)number(a, v, 1, 100); i++; }
     else if (strcmp(a, "--n") == 0) { only_n = number(a, v, 2, 1000000); i++; }
@@ -451,12 +455,13 @@ int main(int argc, char **argv) {
   stamp = malloc(largest * sizeof *stamp);
   queue = malloc(largest * sizeof *queue);
   if (!bodies || !spans || !stamp || !queue) { fprintf(stderr, "bench-reference: out of memory\n"); return 1; }
+  /* the sizes of bench-scenes; --n keeps one of them */
   long s1_sizes[] = { 100, 1000, 10000, 16000 }, s2_sizes[] = { 100, 1000, 5000 };
   if (s1 && (wanted_mode("discrete") || wanted_mode("swept")))
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < (quick ? 2 : 4); i++)
       if (!only_n || only_n == s1_sizes[i]) run_s1(only_n ? only_n : s1_sizes[i]);
   if (s2 && wanted_mode("flonum"))
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < (quick ? 1 : 3); i++)
       if (!only_n || only_n == s2_sizes[i]) run_s2(only_n ? only_n : s2_sizes[i]);
   FILE *out = fopen(csv_file, "w");
   if (!out) { fprintf(stderr, "bench-reference: cannot write the CSV file \"%s\"\n", csv_file); return 1; }
