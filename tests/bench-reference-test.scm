@@ -1,4 +1,4 @@
-;;; bench/reference/scenes.c, S1 and S2 in plain C, against bench/scenes.scm:
+;;; bench/reference/scenes.c, S1, S2 and S5 in plain C, against bench/scenes.scm:
 ;;; for the same arguments both print the same checksum lines, so the C
 ;;; figures docs/performance.org compares with are the same scenes
 ;;; ("Against a plain C implementation"). A change to either side's rules
@@ -51,7 +51,10 @@
   '(("S1 --n 100" 2)                               ; the scene as defined, both modes
     ("S1 --n 1000 --warm-up 60 --frames 70" 2)     ; a jump at frame 60 on the ground
     ("S2 --n 100 --mode flonum" 1)
-    ("S2 --n 1000 --mode flonum --warm-up 10 --frames 50" 1)))   ; sums not whole
+    ("S2 --n 1000 --mode flonum --warm-up 10 --frames 50" 1)    ; sums not whole
+    ("S5 --n 1000 --mode flonum" 1)
+    ;; by frame 48 pushes have made exact coordinates no double holds
+    ("S5 --n 4000 --mode flonum --warm-up 0 --frames 50" 1)))
 
 (for-each
  (lambda (c)

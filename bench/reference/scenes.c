@@ -1,15 +1,17 @@
-/* The benchmark scenes S1 and S2 of docs/performance.org ("The scenes")
-   in plain C, doubles for positions: what the same work costs without
+/* The benchmark scenes S1, S2 and S5 of docs/performance.org ("The
+   scenes") in plain C, doubles for positions: what the same work costs without
    Scheme, to read bench/scenes.scm's figures against ("Against a plain C
    implementation" in docs/performance.org). It prints the same checksum
    lines as bench/scenes.scm; equal checksums are what make it the same
    scene (tests/bench-reference-test.scm compares them). Only the rules
    these scenes use are here: no slopes, one-way tiles, immovable bodies
-   or tweens. Built by the Makefile as build/bench-reference:
+   or tweens. Besides the times it prints the scenes' work per body-frame
+   (pairs tested, pushes, escapes), which is the scene's, not the
+   program's. Built by the Makefile as build/bench-reference:
      bench-reference [--runs R] [--csv FILE] [--quick] [--n N] [--mode M]
                      [--warm-up W] [--frames F] [S1 S2 S5]
    S1 runs its two tile modes, discrete and swept (docs/physics.org,
-   "Collision modes"); S2 runs with flonum positions, bench/scenes.scm's
+   "Collision modes"); S2 and S5 run with flonum positions, bench/scenes.scm's
    mode flonum (its exact modes keep rationals, which doubles are not). */
 
 #include <math.h>
@@ -269,6 +271,7 @@ static void gather(long p, long after) {
    turn comes: the others do not overlap, and visiting them does nothing.
    visit(p, q) pushes the pair apart if it overlaps (1 when it did);
    cells(k) are body k's cells now. */
+static long pairs_tested, pushes;      /* the scene's work, counted */
 static void visit_pairs(int (*visit)(long, long), span (*cells)(long)) {
   for (long k = 0; k < count; k++) stamp[k] = -1;
   for (long p = 0; p < count; p++) {
@@ -276,7 +279,9 @@ static void visit_pairs(int (*visit)(long, long), span (*cells)(long)) {
     gather(p, p);
     while (queued > 0) {
       long q = queue[--queued];
+      pairs_tested++;
       if (!visit(p, q)) continue;
+      pushes++;
       refresh(q, cells(q));
       if (refresh(p, cells(p))) gather(p, q);      /* p reached new cells */
     }
@@ -626,6 +631,7 @@ static int tile_ground_n(long k, long w, long h) {
    body overlapping this one horizontally whose top is within 5 px of its
    bottom, while |vy| <= 12; its top lies in the cells of rows bottom - 5
    to bottom + 5 (a pixel more each way, for rounding). */
+static long ground_tested;
 static int entity_ground(long k, long w, long h) {
   if (labs(bodies[k].vy) > 12) return 0;
   num bottom = addi(py[k], h);
@@ -636,6 +642,7 @@ static int entity_ground(long k, long w, long h) {
       cell_list *c = &grid[cy][cx];
       for (int i = 0; i < c->n; i++) {
         long s = c->at[i];
+        ground_tested++;
         if (s != k && lt(px[k], addi(px[s], w)) && lt(px[s], addi(px[k], w)) &&
             cmp(absn(sub(py[s], bottom)), num_int(5)) <= 0)
           return 1;
@@ -774,11 +781,14 @@ static void run_s2(long n) {
     double start = 0;
     s2_scene(n);
     for (long f = 0; f < warm + timed; f++) {
-      if (f == warm) start = now_ms();
+      if (f == warm) { start = now_ms(); pairs_tested = pushes = 0; }
       s2_frame();
     }
     times[r] = now_ms() - start;
     if (r == 0) {
+      double body_frames = (double)n * timed;
+      printf("  work per body-frame: %.2f pairs tested, %.3f pushed apart\n",
+             pairs_tested / body_frames, pushes / body_frames);
       char x[40], y[40];
       flonum_string(sum_x(), x, sizeof x);
       flonum_string(sum_y(), y, sizeof y);
@@ -818,11 +828,15 @@ static void run_s5(long n) {
     double start = 0;
     s5_scene(n);
     for (long f = 0; f < warm + timed; f++) {
-      if (f == warm) start = now_ms();
+      if (f == warm) { start = now_ms(); pairs_tested = pushes = escapes = ground_tested = 0; }
       s5_frame(f);
     }
     times[r] = now_ms() - start;
     if (r == 0) {
+      double body_frames = (double)n * timed;
+      printf("  work per body-frame: %.2f pairs tested, %.3f pushed apart, %.4f escapes, "
+             "%.2f bodies tested for ground\n", pairs_tested / body_frames, pushes / body_frames,
+             escapes / body_frames, ground_tested / body_frames);
       char x[64], y[64];
       sum_string(px, x, sizeof x);
       sum_string(py, y, sizeof y);
