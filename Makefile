@@ -3,7 +3,8 @@
 #                then install the egg as a user would and run them again
 #   make check   just the suites, on build/ (the quick loop while working)
 #   make demo    install what is missing, build, run the platformer demo
-#   make bench   the benchmark scenes of docs/performance.org (never part of test)
+#   make bench   the benchmark scenes of docs/performance.org (never part of test),
+#                and S1 and S2 in plain C beside them
 #   make screenshots  the demos' pictures in docs/images/
 #   make web     the platformer (or GAME=path/to/game.scm) for the browser, in build/web/
 #   make web-bench  S1 and the platformer in headless Chromium and natively, in one run
@@ -66,7 +67,7 @@ examples:
 
 # SUITES="escape physics/" runs only those suites (names, or folders ending
 # in /); each suite runs alone in its own process (tests/run.scm).
-check: libs examples assets
+check: libs examples assets $(BUILD)/bench-scenes $(BUILD)/bench-reference
 	cd tests && $(HEADLESS) DOWNSTROKE_MAKE=1 $(if $(SUITES),DOWNSTROKE_SUITES="$(SUITES)") csi -q -s run.scm
 
 # After check, not beside it (-j2): a clean copy installed into a private
@@ -99,8 +100,15 @@ $(BUILD)/bench-scenes: bench/scenes.scm $(LIBS)
 $(BUILD)/bench-draw: bench/draw.scm $(LIBS)
 	cd $(BUILD) && $(CSC) $(CSC_FLAGS) ../bench/draw.scm -o bench-draw
 
-bench: libs $(BUILD)/bench-scenes $(BUILD)/bench-draw
+# S1 and S2 in plain C (bench/reference/scenes.c, doubles, no CHICKEN): the
+# same scenes and checksums, the distance to a C program (docs/performance.org).
+REF_CC ?= cc
+$(BUILD)/bench-reference: bench/reference/scenes.c | $(BUILD)
+	$(REF_CC) -O2 -o $@ bench/reference/scenes.c -lm
+
+bench: libs $(BUILD)/bench-scenes $(BUILD)/bench-draw $(BUILD)/bench-reference
 	$(HEADLESS) $(BUILD)/bench-scenes --runs $(RUNS) --csv bench/results.csv $(BENCH_ARGS)
+	$(BUILD)/bench-reference --runs $(RUNS) --csv bench/reference/results.csv $(BENCH_ARGS)
 	sh tools/plot-bench.sh bench/results.csv docs/images
 	$(HEADLESS) csi -q -s bench/map-load.scm
 	$(HEADLESS) csi -q -s bench/render.scm
