@@ -553,11 +553,6 @@ static void bench_count_gc(int mode, C_long ms) {
                         '(1 8 16 27 28 29 40 64 200 1000 1000000)))
             (modes '(discrete swept))))
 
-(with-output-to-file csv-file
-  (lambda ()
-    (print "scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct")
-    (for-each print (reverse csv-rows))))
-(printf "wrote ~a~%" csv-file)
 (when (wanted? "S4")
   (let* ((bullets (if quick? 500 2000)) (enemies (if quick? 125 500))
          (fast (run-s4 'overlapping-pairs bullets enemies runs))
@@ -571,3 +566,10 @@ static void bench_count_gc(int mode, C_long ms) {
   (for-each (lambda (kind)
               (for-each (lambda (n) (run-s6 n kind runs)) (sizes (if quick? '(100) '(100 200 400)))))
             '(exact inexact)))
+
+;; Written last, so every scene run has its row (S4 to S6 included).
+(with-output-to-file csv-file
+  (lambda ()
+    (print "scene,mode,n,speed,frames,ms_per_frame,us_per_entity_frame,tunnel_pct,wrong_pct")
+    (for-each print (reverse csv-rows))))
+(printf "wrote ~a~%" csv-file)
