@@ -291,9 +291,9 @@ static void downstroke_view(SDL_Renderer *r, int *w, int *h) {
 
 #include "shell/tiles.c"
 
-/* The copy queue (render-batched): between ds_q_begin and ds_q_end, an
-   unturned copy of a source inside its texture, on the accelerated
-   renderer being batched, is kept as a quad whose vertices carry the
+/* The copy queue (render-batched): between ds_q_begin and ds_q_end, a
+   copy of a source inside its texture (turned: on opengl only), on the
+   accelerated renderer being batched, is kept as a quad whose vertices carry the
    colour and alpha the copy is drawn with (the texture's modulation when
    it was queued, as SDL's own copy takes it); a run of one texture goes
    to SDL as one SDL_RenderGeometry call (tiles.c's ds_batch_send).
@@ -571,10 +571,10 @@ EOF
       (error who (sprintf "~a: not a live window" who) w))
     (window-ptr w))
 
-  ;; (render-batched r thunk): calls thunk with r's unturned copies of a
-  ;; source inside its texture kept in C and sent as one
-  ;; SDL_RenderGeometry call per run of one texture (the copy queue of
-  ;; the C above), on an accelerated renderer; as a plain call on a
+  ;; (render-batched r thunk): calls thunk with r's copies of a source
+  ;; inside its texture (turned ones on the opengl renderer only) kept in
+  ;; C and sent as one SDL_RenderGeometry call per run of one texture (the
+  ;; copy queue of the C above), on an accelerated renderer; as a plain call on a
   ;; software one (SDL's software renderer draws geometry otherwise than
   ;; its copies). Whatever else uses the renderer or a texture meanwhile
   ;; (live-renderer, live-texture and the C helpers flush) sends the
