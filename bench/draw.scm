@@ -11,7 +11,8 @@
 ;;;                   through an 800 x 600 camera moving (3, 2) px a frame.
 ;;; For each scene it prints the CPU time (user + system, all threads: the
 ;;; driver's too) per frame, in ms, of FRAMES frames (default 300) after 30
-;;; of warm-up; a frame is the update, render-scene! and render-present!.
+;;; of warm-up; a frame is the update, render-scene! and render-present!;
+;;; then the places drawn (as bench/love prints them).
 ;;;
 ;;;   xvfb-run -a -s "-screen 0 1024x768x24" env CHICKEN_REPOSITORY_PATH=build:$(env -u CHICKEN_INSTALL_REPOSITORY chicken-install -repository) \
 ;;;     csi -q -s bench/draw.scm SCENE [N]
@@ -59,6 +60,13 @@
 (define seed 20261121)
 (define (draw!) (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648)) seed)
 
+;; What the scene drew, printed after the time as bench/love prints it
+;; (tools/bench-draw.sh checks that both sides drew the same): sprites, the
+;; sums of their first x and y; the map, its cells and the sum of their
+;; tile numbers.
+(define places "")
+(define (places-set! a b) (set! places (sprintf "~a/~a" a b)))
+
 ;; The scene is made once, as a game makes its level; each frame its
 ;; update moves every entity (#:x += #:dx, wrapping; fancy: #:angle += 2),
 ;; as a game's update: hook would, and the frame draws the scene it
@@ -75,6 +83,7 @@
                        (cons (append (list #:x x #:y y #:dx (+ 1 (modulo i 3)) #:tile-id (+ 1 (modulo i 4)))
                                      (if fancy? (list #:angle (modulo (* 2 i) 360) #:scale 3/2 #:alpha 160) '()))
                              out)))))))
+    (places-set! (foldl + 0 (map cadr entities)) (foldl + 0 (map cadddr entities)))
     (let ((scene (make-sprite-scene tileset: sheet tileset-texture: sheet-tex background: '(0 0 0)
                                     entities: entities))
           (move (lambda (s e)
@@ -97,10 +106,15 @@
     (make-layer name 200 200 data)))
 
 (define (map-scene)
-  (let ((tm (make-tilemap 200 200 16 16
-                          (list (map-layer "ground" 100) (map-layer "middle" 33) (map-layer "top" 10))
-                          tilesets: (list map-tileset)))
-        (max-x (- (* 200 16) win-w)) (max-y (- (* 200 16) win-h)))
+  (let* ((layers (list (map-layer "ground" 100) (map-layer "middle" 33) (map-layer "top" 10)))
+         (tm (make-tilemap 200 200 16 16 layers tilesets: (list map-tileset)))
+         (max-x (- (* 200 16) win-w)) (max-y (- (* 200 16) win-h)))
+    (let count ((i 0) (cells 0) (sum 0))
+      (if (= i (* 200 200 3))
+          (places-set! cells sum)
+          (let ((gid (u32vector-ref (layer-data (list-ref layers (quotient i (* 200 200))))
+                                    (remainder i (* 200 200)))))
+            (count (+ i 1) (if (zero? gid) cells (+ cells 1)) (+ sum gid)))))
     (lambda (f)
       (make-scene tilemap: tm background: '(0 0 0) camera-target: #f
                   camera: (make-camera x: (modulo (* 3 f) max-x) y: (modulo (* 2 f) max-y))))))
@@ -123,10 +137,11 @@
 (let ((t0 (cpu-ms)) (w0 (current-milliseconds)))
   (do ((f warm-up (+ f 1))) ((= f (+ warm-up frames))) (frame! f))
   (let ((cpu (- (cpu-ms) t0)) (wall (- (current-milliseconds) w0)))
-    (printf "draw ~a ~a (~a): ~a ms CPU per frame, ~a ms wall~%"
+    (printf "draw ~a ~a (~a): ~a ms CPU per frame, ~a ms wall, places ~a~%"
             scene-name (if (equal? scene-name "map") "200x200x3" n) (renderer-name r)
             (/ (round (* 1000 (/ cpu frames))) 1000.)
-            (/ (round (* 1000 (/ wall frames))) 1000.))))
+            (/ (round (* 1000 (/ wall frames))) 1000.)
+            places)))
 (destroy-texture! sheet-tex)
 (destroy-texture! map-tex)
 (delete-directory dir #t)

@@ -66,13 +66,14 @@ static int ds_gl_load(void) {
   ds_gl.loaded = (ds_gl.enable_client && ds_gl.disable_client && ds_gl.is_enabled && ds_gl.vertex_pointer
                   && ds_gl.color_pointer && ds_gl.tex_coord_pointer && ds_gl.draw_elements
                   && ds_gl.get_integerv) ? 1 : -1;
-  /* the corners of quad q are vertices 4q .. 4q + 3, split as SDL's copy */
+  /* the corners of quad q are vertices 4q .. 4q + 3, split as SDL's copy
+     (tiles.c's ds_batch_indices) */
   for (i = 0; i < DS_BATCH_QUADS; i++) {
     ds_gl_indices[i * 6 + 0] = (Uint16)(i * 4 + 0);
     ds_gl_indices[i * 6 + 1] = (Uint16)(i * 4 + 1);
     ds_gl_indices[i * 6 + 2] = (Uint16)(i * 4 + 2);
-    ds_gl_indices[i * 6 + 3] = (Uint16)(i * 4 + 2);
-    ds_gl_indices[i * 6 + 4] = (Uint16)(i * 4 + 1);
+    ds_gl_indices[i * 6 + 3] = (Uint16)(i * 4 + 1);
+    ds_gl_indices[i * 6 + 4] = (Uint16)(i * 4 + 2);
     ds_gl_indices[i * 6 + 5] = (Uint16)(i * 4 + 3);
   }
   return ds_gl.loaded > 0;

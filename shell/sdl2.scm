@@ -210,6 +210,8 @@ static double ds_dest_limit(SDL_Renderer *r) {
 
 static void ds_q_flush(void);
 static int ds_q_copy(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *dst, int h, int v);
+static int ds_q_copy_ex(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *dst, double angle,
+                        int h, int v);
 
 /* Fill (which 0) or outline (1) a rect, or the whole target. */
 static int downstroke_rect(SDL_Renderer *r, int which, int whole,
@@ -274,7 +276,9 @@ static int downstroke_copy_ints(SDL_Renderer *r, SDL_Texture *t, int use_src,
                                 double angle, int hflip, int vflip) {
   SDL_Rect src = { sx, sy, sw, sh }, dst = { dx, dy, dw, dh };
   int flip = (hflip ? SDL_FLIP_HORIZONTAL : 0) | (vflip ? SDL_FLIP_VERTICAL : 0);
-  if (angle == 0.0 && use_src && ds_q_copy(r, t, &src, &dst, hflip, vflip)) return 0;
+  if (use_src && (angle == 0.0 ? ds_q_copy(r, t, &src, &dst, hflip, vflip)
+                                : ds_q_copy_ex(r, t, &src, &dst, angle, hflip, vflip)))
+    return 0;
   return ds_copy_rect(r, t, use_src ? &src : NULL, &dst, angle, flip);
 }
 
@@ -287,9 +291,9 @@ static void downstroke_view(SDL_Renderer *r, int *w, int *h) {
 
 #include "shell/tiles.c"
 
-/* The copy queue (render-batched): between ds_q_begin and ds_q_end, an
-   unturned copy of a source inside its texture, on the accelerated
-   renderer being batched, is kept as a quad whose vertices carry the
+/* The copy queue (render-batched): between ds_q_begin and ds_q_end, a
+   copy of a source inside its texture (turned: on opengl only), on the
+   accelerated renderer being batched, is kept as a quad whose vertices carry the
    colour and alpha the copy is drawn with (the texture's modulation when
    it was queued, as SDL's own copy takes it); a run of one texture goes
    to SDL as one SDL_RenderGeometry call (tiles.c's ds_batch_send).
@@ -299,6 +303,7 @@ static void downstroke_view(SDL_Renderer *r, int *w, int *h) {
 static SDL_Renderer *ds_q_r = NULL;
 static SDL_Texture *ds_q_t = NULL;
 static int ds_q_n = 0, ds_q_tw = 1, ds_q_th = 1, ds_q_status = 0;
+static int ds_q_turns = 0;            /* turned copies join the queue (ds_q_copy_turned) */
 
 static void ds_q_flush(void) {
   if (ds_q_n > 0) {
@@ -308,7 +313,22 @@ static void ds_q_flush(void) {
   ds_q_n = 0;
 }
 
-static void ds_q_begin(SDL_Renderer *r) { ds_q_flush(); ds_q_r = r; ds_q_t = NULL; ds_q_status = 0; }
+/* Turned copies are queued on SDL's opengl renderer only, whose
+   SDL_RenderCopyEx (SDL 2.26) is the geometry ds_q_copy_turned repeats. */
+static int ds_q_turning_renderer(SDL_Renderer *r) {
+#if defined(__EMSCRIPTEN__)
+  (void)r;
+  return 0;
+#else
+  SDL_RendererInfo info;
+  return SDL_GetRendererInfo(r, &info) == 0 && info.name && SDL_strcmp(info.name, "opengl") == 0;
+#endif
+}
+
+static void ds_q_begin(SDL_Renderer *r) {
+  ds_q_flush(); ds_q_r = r; ds_q_t = NULL; ds_q_status = 0;
+  ds_q_turns = ds_q_turning_renderer(r);
+}
 
 static int ds_q_end(void) {
   int st;
@@ -318,9 +338,9 @@ static int ds_q_end(void) {
   return st;
 }
 
-/* 1 when the copy was queued, its vertices coloured c. */
-static int ds_q_copy_colored(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst,
-                             int h, int v, SDL_Color c) {
+/* 1 when the queue has room for a copy of src of t (a run of t open,
+   src inside it); 0 when the copy is to go to SDL (the run so far sent). */
+static int ds_q_room(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst) {
   if (r != ds_q_r || !src || !dst || dst->w <= 0 || dst->h <= 0) return 0;
   if (t != ds_q_t || ds_q_n == DS_BATCH_QUADS) {
     ds_q_flush();
@@ -332,12 +352,68 @@ static int ds_q_copy_colored(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *sr
   }
   if (src->x < 0 || src->y < 0 || src->w <= 0 || src->h <= 0
       || src->x + src->w > ds_q_tw || src->y + src->h > ds_q_th) { ds_q_flush(); return 0; }
+  return 1;
+}
+
+static void ds_q_color(SDL_Color c) {
+  SDL_Vertex *p = &ds_batch_verts[ds_q_n * 4];
+  p[0].color = c; p[1].color = c; p[2].color = c; p[3].color = c;
+}
+
+/* 1 when the copy was queued, its vertices coloured c. */
+static int ds_q_copy_colored(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst,
+                             int h, int v, SDL_Color c) {
+  if (!ds_q_room(r, t, src, dst)) return 0;
   ds_batch_quad_to(ds_q_n, ds_q_tw, ds_q_th, src->x, src->y, src->w, src->h,
                    dst->x, dst->y, dst->w, dst->h, h, v);
-  {
-    SDL_Vertex *p = &ds_batch_verts[ds_q_n * 4];
-    p[0].color = c; p[1].color = c; p[2].color = c; p[3].color = c;
-  }
+  ds_q_color(c);
+  ds_q_n++;
+  return 1;
+}
+
+/* A turned copy (SDL_RenderCopyEx about the centre of dst, h and v its
+   flips), queued on the opengl renderer as the four corners SDL 2.26
+   computes for it there: SDL turns a copy on the CPU, in floats, with
+   SDL_sinf and SDL_cosf, and draws it as two triangles of the corners
+   TL TR BL and TR BL BR. Every operation below is SDL's, in its order,
+   so the corners are SDL's to the bit (shell/tests/tile-batch-test.scm
+   compares crowds drawn both ways in a real window). An angle of a whole
+   number of turns without a flip is SDL's plain copy. */
+static int ds_q_copy_turned(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst,
+                            double angle, int h, int v, SDL_Color c) {
+  float minx, miny, maxx, maxy, centerx, centery, minu, minv, maxu, maxv, rad, s, co;
+  float s_minx, s_miny, s_maxx, s_maxy, c_minx, c_miny, c_maxx, c_maxy;
+  SDL_Vertex *p;
+  if (!ds_q_turns || !(angle > -1e9 && angle < 1e9) || !ds_q_room(r, t, src, dst)) return 0;
+  if (!h && !v && (int)(angle / 360) == angle / 360) return ds_q_copy_colored(r, t, src, dst, 0, 0, c);
+  minu = (float)src->x / (float)ds_q_tw;
+  minv = (float)src->y / (float)ds_q_th;
+  maxu = (float)(src->x + src->w) / (float)ds_q_tw;
+  maxv = (float)(src->y + src->h) / (float)ds_q_th;
+  centerx = (float)dst->w / 2.0f + (float)dst->x;
+  centery = (float)dst->h / 2.0f + (float)dst->y;
+  minx = h ? (float)dst->x + (float)dst->w : (float)dst->x;
+  maxx = h ? (float)dst->x : (float)dst->x + (float)dst->w;
+  miny = v ? (float)dst->y + (float)dst->h : (float)dst->y;
+  maxy = v ? (float)dst->y : (float)dst->y + (float)dst->h;
+  rad = (float)((M_PI * angle) / 180.0);
+  s = SDL_sinf(rad);
+  co = SDL_cosf(rad);
+  s_minx = s * (minx - centerx); s_miny = s * (miny - centery);
+  s_maxx = s * (maxx - centerx); s_maxy = s * (maxy - centery);
+  c_minx = co * (minx - centerx); c_miny = co * (miny - centery);
+  c_maxx = co * (maxx - centerx); c_maxy = co * (maxy - centery);
+  /* the queue's corner order, TL TR BL BR (ds_batch_send's triangles) */
+  p = &ds_batch_verts[ds_q_n * 4];
+  p[0].position.x = (c_minx - s_miny) + centerx; p[0].position.y = (s_minx + c_miny) + centery;
+  p[1].position.x = (c_maxx - s_miny) + centerx; p[1].position.y = (s_maxx + c_miny) + centery;
+  p[2].position.x = (c_minx - s_maxy) + centerx; p[2].position.y = (s_minx + c_maxy) + centery;
+  p[3].position.x = (c_maxx - s_maxy) + centerx; p[3].position.y = (s_maxx + c_maxy) + centery;
+  p[0].tex_coord.x = minu; p[0].tex_coord.y = minv;
+  p[1].tex_coord.x = maxu; p[1].tex_coord.y = minv;
+  p[2].tex_coord.x = minu; p[2].tex_coord.y = maxv;
+  p[3].tex_coord.x = maxu; p[3].tex_coord.y = maxv;
+  ds_q_color(c);
   ds_q_n++;
   return 1;
 }
@@ -353,6 +429,12 @@ static SDL_Color ds_texture_modulation(SDL_Texture *t) {
 static int ds_q_copy(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *dst, int h, int v) {
   if (r != ds_q_r) return 0;
   return ds_q_copy_colored(r, t, src, dst, h, v, ds_texture_modulation(t));
+}
+
+static int ds_q_copy_ex(SDL_Renderer *r, SDL_Texture *t, SDL_Rect *src, SDL_Rect *dst, double angle,
+                        int h, int v) {
+  if (r != ds_q_r || !ds_q_turns) return 0;
+  return ds_q_copy_turned(r, t, src, dst, angle, h, v, ds_texture_modulation(t));
 }
 
 #include "shell/sprites.c"
@@ -489,10 +571,10 @@ EOF
       (error who (sprintf "~a: not a live window" who) w))
     (window-ptr w))
 
-  ;; (render-batched r thunk): calls thunk with r's unturned copies of a
-  ;; source inside its texture kept in C and sent as one
-  ;; SDL_RenderGeometry call per run of one texture (the copy queue of
-  ;; the C above), on an accelerated renderer; as a plain call on a
+  ;; (render-batched r thunk): calls thunk with r's copies of a source
+  ;; inside its texture (turned ones on the opengl renderer only) kept in
+  ;; C and sent as one SDL_RenderGeometry call per run of one texture (the
+  ;; copy queue of the C above), on an accelerated renderer; as a plain call on a
   ;; software one (SDL's software renderer draws geometry otherwise than
   ;; its copies). Whatever else uses the renderer or a texture meanwhile
   ;; (live-renderer, live-texture and the C helpers flush) sends the

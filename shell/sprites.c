@@ -108,15 +108,17 @@ static int ds_near(double p, double size) {
 
 /* One copy as renderer.scm makes it: the texture's modulation, or the
    tint and alpha given (tinted, alpha < 255), which are reset to full
-   after the copy as renderer.scm resets them. Unturned copies join the
-   queue when one is open; the rest go to SDL at once. */
+   after the copy as renderer.scm resets them. Copies join the queue when
+   one is open (turned ones on the opengl renderer only, sdl2.scm's
+   ds_q_copy_turned); the rest go to SDL at once. */
 static int ds_sprite_copy(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst,
                           double angle, int h, int v, int tinted, SDL_Color tint, int alpha) {
   SDL_Color c = ds_texture_modulation(t);
   int st = 0;
   if (tinted) { c.r = tint.r; c.g = tint.g; c.b = tint.b; }
   if (alpha < 255) c.a = (Uint8)alpha;
-  if (!(angle == 0.0 && ds_q_copy_colored(r, t, src, dst, h, v, c))) {
+  if (!(angle == 0.0 ? ds_q_copy_colored(r, t, src, dst, h, v, c)
+                     : ds_q_copy_turned(r, t, src, dst, angle, h, v, c))) {
     ds_q_flush();
     if (tinted) st = SDL_SetTextureColorMod(t, c.r, c.g, c.b);
     if (st >= 0 && alpha < 255) st = SDL_SetTextureAlphaMod(t, c.a);

@@ -41,12 +41,14 @@ static int ds_batch_send(SDL_Renderer *r, SDL_Texture *t, int n) {
   if (n == 0 || !t) return 0;
   if (!ds_batch_indices_ready) {
     for (i = 0; i < DS_BATCH_QUADS; i++) {
-      /* SDL's copy: the strip (0 1 2) (2 1 3) of corners TL TR BL BR */
+      /* SDL's copy on opengl: the triangles TL TR BL and TR BL BR of
+         corners TL TR BL BR, each in SDL's order (a turned quad's pixels
+         follow the order, sdl2.scm's ds_q_copy_turned) */
       ds_batch_indices[i * 6 + 0] = i * 4 + 0;
       ds_batch_indices[i * 6 + 1] = i * 4 + 1;
       ds_batch_indices[i * 6 + 2] = i * 4 + 2;
-      ds_batch_indices[i * 6 + 3] = i * 4 + 2;
-      ds_batch_indices[i * 6 + 4] = i * 4 + 1;
+      ds_batch_indices[i * 6 + 3] = i * 4 + 1;
+      ds_batch_indices[i * 6 + 4] = i * 4 + 2;
       ds_batch_indices[i * 6 + 5] = i * 4 + 3;
     }
     ds_batch_indices_ready = 1;

@@ -6,14 +6,27 @@
 -- tiles scrolling (3, 2) px a frame, each layer one SpriteBatch built once,
 -- as the Simple Tiled Implementation library draws Tiled maps). Prints the
 -- CPU time (os.clock: user + system, all threads) per frame of FRAMES
--- frames (default 300) after 30 of warm-up.
+-- frames (default 300) after 30 of warm-up, and the places drawn (as
+-- bench/draw.scm prints them; tools/bench-draw.sh checks they match).
 
 local scene, n, frames, warmup = "sprites", 1000, tonumber(os.getenv("FRAMES") or "300"), 30
 local W, H = 800, 600
 
--- bench/draw.scm's integer generator
+-- bench/draw.scm's integer generator, exactly: a Lua number is a double,
+-- and 1103515245 * seed (up to 2^61) would lose its low bits (which put
+-- every sprite on a multiple of 8 px, cheaper for the rasterizer than
+-- Downstroke's places), so the product is taken in two halves of seed.
 local seed = 20261121
-local function draw() seed = (1103515245 * seed + 12345) % 2147483648; return seed end
+local function draw()
+  local hi, lo = math.floor(seed / 65536), seed % 65536
+  seed = ((1103515245 * hi) % 32768 * 65536 + 1103515245 * lo + 12345) % 2147483648
+  return seed
+end
+
+-- What both sides print after the time, to show they drew the same:
+-- sprites, the sums of their first places; the map, its cells and the
+-- sum of their tile numbers.
+local places = ""
 
 -- A sheet of columns x rows 16 x 16 tiles, as bench/draw.scm makes it.
 local function sheet(columns, rows)
@@ -54,6 +67,9 @@ local function sprites(fancy)
     local y = draw() % (H - 16)
     list[i + 1] = { x = x, y = y, dx = 1 + i % 3, quad = quads[1 + i % 4], angle = (2 * i) % 360 }
   end
+  local sx, sy = 0, 0
+  for _, s in ipairs(list) do sx, sy = sx + s.x, sy + s.y end
+  places = string.format("%d/%d", sx, sy)
   return function(f)
     if f > 0 then
       for _, s in ipairs(list) do
@@ -77,16 +93,19 @@ end
 
 local function tilemap()
   local img, quads = sheet(4, 4)
-  local batches = {}
+  local batches, cells, sum = {}, 0, 0
   for k, percent in ipairs({100, 33, 10}) do
     local b = love.graphics.newSpriteBatch(img, 200 * 200, "static")
     for i = 0, 200 * 200 - 1 do
       if draw() % 100 < percent then
-        b:add(quads[1 + draw() % 16], 16 * (i % 200), 16 * math.floor(i / 200))
+        local tile = 1 + draw() % 16
+        b:add(quads[tile], 16 * (i % 200), 16 * math.floor(i / 200))
+        cells, sum = cells + 1, sum + tile
       end
     end
     batches[k] = b
   end
+  places = string.format("%d/%d", cells, sum)
   local max_x, max_y = 200 * 16 - W, 200 * 16 - H
   return function(f)
     love.graphics.clear(0, 0, 0)
@@ -117,9 +136,9 @@ function love.run()
     love.graphics.present()
   end
   local cpu, wall = os.clock() - t0, love.timer.getTime() - w0
-  print(string.format("love %s %s (%s): %.3f ms CPU per frame, %.3f ms wall",
+  print(string.format("love %s %s (%s): %.3f ms CPU per frame, %.3f ms wall, places %s",
                       scene, scene == "map" and "200x200x3" or tostring(n),
                       (select(1, love.graphics.getRendererInfo())),
-                      1000 * cpu / frames, 1000 * wall / frames))
+                      1000 * cpu / frames, 1000 * wall / frames, places))
   return function() return 0 end
 end

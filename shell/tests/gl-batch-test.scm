@@ -5,7 +5,7 @@
 ;;; render order, flips, two tilesets, a translucent tinted layer,
 ;;; parallax, sources beyond the image) through its cameras, and its
 ;;; sprite crowds (plain, mirrored, scaled, tinted, translucent, turned,
-;;; by #:z, between boxes). Each picture also counts the quads OpenGL drew
+;;; turned and mirrored, by #:z, between boxes). Each picture also counts the quads OpenGL drew
 ;;; itself: some with the path on, none with it off, none at a render
 ;;; scale other than 1 (SDL then scales the vertices, and draws them all).
 
@@ -94,7 +94,7 @@
         (test "the child exits cleanly" 0 status)
         (unless (zero? status) (for-each print lines))
         (test-assert "SDL's renderer is opengl" (and (member "renderer opengl" lines) #t))
-        (test "every case compared (25 map views, 10 crowds, the scaled renderer)" 36 (length cases))
+        (test "every case compared (25 map views, 11 crowds, the scaled renderer)" 37 (length cases))
         (for-each
          (lambda (c)
            (test (sprintf "~a: same pixels" (car c)) 0 (number c 1))
@@ -104,6 +104,12 @@
         (let ((quads (lambda (label) (let ((c (assoc label cases))) (and c (number c 2))))))
           (test-assert "a plain crowd: most of its 300 sprites by OpenGL itself"
                        (> (or (quads "sprites: plain") 0) 250))
+          ;; turned copies are queued too (sdl2.scm's ds_q_copy_turned): one
+          ;; texture, so a crowd of them is one run
+          (test-assert "a turned crowd: most of its 360 sprites by OpenGL itself"
+                       (> (or (quads "sprites: turned at many angles and scales, origins, offsets") 0) 300))
+          (test-assert "a turned and mirrored crowd: most of its 300 by OpenGL itself"
+                       (> (or (quads "sprites: turned and mirrored, tinted, whole turns") 0) 250))
           (test-assert "a map: its runs of cells by OpenGL itself (a diagonal flip ends a run)"
                        (> (or (quads "batch-right-down at (0 0 0)") 0) 100))
           (test "a scaled renderer: none by OpenGL itself" 0 (quads "scaled renderer: sprites")))

@@ -172,6 +172,12 @@
                               #:sprite-offset-x (pick i '(0 -3 5/2 1.5))
                               #:alpha (pick i '(255 200 127.5 90)))))
            '(0 0))
+     (list "turned and mirrored, tinted, whole turns" sheet-a sheet-b
+           (crowd 300 (lambda (i)
+                        (append (list #:angle (pick i (list (+ 3 (* 11 i)) 360 -720 (+ 0.25 (* 5 i)) 1e-7 359.99)))
+                                (pick i '((#:flip-x? #t) (#:flip-y? #t) (#:flip-x? #t #:flip-y? #t) () (#:facing -1)))
+                                (pick i '(() (#:tint (255 128 64)) (#:alpha 100) (#:scale-x 3/2 #:scale-y 1/2))))))
+           '(0 0))
      (list "fractional places and cameras, scales apart" sheet-a sheet-b
            (crowd 300 (lambda (i)
                         (append (list #:x (+ (modulo (* i 37) 190) (pick i '(0.37 -0.5 1/4 0.999 0)))
