@@ -104,12 +104,28 @@ static C_word ds_ground_scan(C_word buf, C_word from, C_word count, C_word solid
    reads them (a key's first pair, 0 when absent), are numbers this file
    takes and do not overlap; 0 otherwise (they overlap, or the Scheme
    decides). keys is #(#:x #:y #:width #:height). */
+/* ds_find_real of the four keys in e, in one walk of e: each key's first
+   pair is the one ds_find finds, and a key is missing (0.0) or unreadable
+   (0) exactly when ds_find_real says so. */
+static inline int ds_find_box(C_word e, C_word keys, double *v) {
+  C_word k[4], p;
+  int found = 0, i;
+  for (i = 0; i < 4; i++) { k[i] = C_block_item(keys, i); v[i] = 0.0; }
+  for (; e != C_SCHEME_END_OF_LIST && found != 15; e = C_u_i_cdr(e)) {
+    if (!DS_PAIR(e) || !DS_PAIR(p = C_u_i_car(e))) return 0;
+    for (i = 0; i < 4; i++)
+      if (!(found & (1 << i)) && C_u_i_car(p) == k[i]) {
+        found |= 1 << i;
+        if (!ds_overlap_real(C_u_i_cdr(p), &v[i])) return 0;
+        break;
+      }
+  }
+  return 1;
+}
+
 static C_word ds_pair_apart(C_word a, C_word b, C_word keys) {
   double v[8];
-  int i;
-  for (i = 0; i < 4; i++)
-    if (!ds_find_real(a, C_block_item(keys, i), &v[i]) || !ds_find_real(b, C_block_item(keys, i), &v[4 + i]))
-      return C_fix(0);
+  if (!ds_find_box(a, keys, v) || !ds_find_box(b, keys, v + 4)) return C_fix(0);
   return C_fix(!(v[0] < v[4] + v[6] && v[4] < v[0] + v[2] && v[1] < v[5] + v[7] && v[5] < v[1] + v[3]));
 }
 
