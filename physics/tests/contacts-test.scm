@@ -190,11 +190,16 @@
          #:width (pick (list 8 12 12 16 (+ 1 (rnd 20)) 12.0 0.5))
          #:height (pick (list 8 12 12 16 (+ 1 (rnd 20)) 12.0 3.25))))
   (define pair-bases (list 0 -40 (- (expt 2 50) 12) (- 12 (expt 2 50)) (expt 2 52) (expt 2 53) (expt 10 15) (expt 2 62)))
+  ;; where fixnums are 31 bits wide (wasm32), the bases past 2^30 are
+  ;; bignums, which the C leaves: fewer pairs, and fewer of them its
+  (define wide? (fixnum? (string->number "1099511627776")))
+  (define pairs (if wide? 20000 6000))
   (let loop ((k 0) (different 0) (plain 0) (first #f))
-    (if (= k 20000)
+    (if (= k pairs)
         (begin
-          (test "20000 random pairs: the same two bodies" 0 different)
-          (test-assert (sprintf "most were boxes of fixnums and flonums (~a)" plain) (> plain 5000))
+          (test (sprintf "~a random pairs: the same two bodies" pairs) 0 different)
+          (test-assert (sprintf "many were boxes of fixnums and flonums it takes (~a)" plain)
+                       (> plain (if wide? 5000 600)))
           (when first (print "push-apart: first difference " first)))
         (let* ((base (pick pair-bases))
                (a (body k base)) (b (body (+ k 1) base))
