@@ -6,7 +6,7 @@
 (module (downstroke contacts)
   (detect-on-solid record-frame-start resolve-entity-collisions
    aabb-overlap? entity-solid-support-below? resolve-pair push-apart
-   ;; for tests only: push-apart without contacts.c
+   ;; for sibling modules only: push-apart without contacts.c, for tests
    push-apart/scheme)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign)
