@@ -104,11 +104,65 @@ static C_word ds_ground_scan(C_word buf, C_word from, C_word count, C_word solid
    reads them (a key's first pair, 0 when absent), are numbers this file
    takes and do not overlap; 0 otherwise (they overlap, or the Scheme
    decides). keys is #(#:x #:y #:width #:height). */
+/* ds_find_real of the four keys in e, in one walk of e: each key's first
+   pair is the one ds_find finds, and a key is missing (0.0) or unreadable
+   (0) exactly when ds_find_real says so. */
+static inline int ds_find_box(C_word e, C_word keys, double *v) {
+  C_word k[4], p;
+  int found = 0, i;
+  for (i = 0; i < 4; i++) { k[i] = C_block_item(keys, i); v[i] = 0.0; }
+  for (; e != C_SCHEME_END_OF_LIST && found != 15; e = C_u_i_cdr(e)) {
+    if (!DS_PAIR(e) || !DS_PAIR(p = C_u_i_car(e))) return 0;
+    for (i = 0; i < 4; i++)
+      if (!(found & (1 << i)) && C_u_i_car(p) == k[i]) {
+        found |= 1 << i;
+        if (!ds_overlap_real(C_u_i_cdr(p), &v[i])) return 0;
+        break;
+      }
+  }
+  return 1;
+}
+
 static C_word ds_pair_apart(C_word a, C_word b, C_word keys) {
   double v[8];
-  int i;
-  for (i = 0; i < 4; i++)
-    if (!ds_find_real(a, C_block_item(keys, i), &v[i]) || !ds_find_real(b, C_block_item(keys, i), &v[4 + i]))
-      return C_fix(0);
+  if (!ds_find_box(a, keys, v) || !ds_find_box(b, keys, v + 4)) return C_fix(0);
   return C_fix(!(v[0] < v[4] + v[6] && v[4] < v[0] + v[2] && v[1] < v[5] + v[7] && v[5] < v[1] + v[3]));
+}
+
+/* push-apart's two decisions for the boxes of a and b (read as
+   ds_pair_apart reads them), when every number is a fixnum below 2^50 in
+   magnitude or a finite flonum: the axis of least overlap (shallow-axis:
+   x when the x overlap is less than the y overlap) and whether a goes to
+   the negative side (goes-negative?: its 2 pos + size is less than b's).
+   0: x, a negative; 1: x, a positive; 2: y, a negative; 3: y, a positive;
+   -1 for anything else, which the Scheme decides. Every sum and
+   difference below is then Scheme's: of two fixnums an integer below
+   2^53, which a double holds exactly, else the one IEEE operation on both
+   as doubles that CHICKEN's generic arithmetic makes; min and max pick
+   the same value either way. Nothing is made: contacts.scm makes the
+   numbers of the push. */
+#ifdef C_SIXTY_FOUR
+# define DS_PUSH_LIMIT ((C_word)1 << 50)
+#else
+# define DS_PUSH_LIMIT ((C_word)1 << 29)
+#endif
+static C_word ds_push_sides(C_word a, C_word b, C_word keys) {
+  double v[8], ox, oy, ca, cb;
+  C_word p, o;
+  int i, axis;
+  for (i = 0; i < 8; i++) {
+    if (!ds_find(i < 4 ? a : b, C_block_item(keys, i & 3), &p)) return C_fix(-1);
+    o = p == C_SCHEME_FALSE ? C_fix(0) : C_u_i_cdr(p);
+    if (o & C_FIXNUM_BIT) {
+      if (C_unfix(o) >= DS_PUSH_LIMIT || C_unfix(o) <= -DS_PUSH_LIMIT) return C_fix(-1);
+      v[i] = (double)C_unfix(o);
+    } else if (!ds_overlap_real(o, &v[i])) return C_fix(-1);
+  }
+  /* keys are #(#:x #:y #:width #:height): v[0..3] a's, v[4..7] b's */
+  ox = fmin(v[0] + v[2], v[4] + v[6]) - fmax(v[0], v[4]);
+  oy = fmin(v[1] + v[3], v[5] + v[7]) - fmax(v[1], v[5]);
+  axis = ox < oy ? 0 : 1;
+  ca = 2.0 * v[axis] + v[axis + 2];
+  cb = 2.0 * v[4 + axis] + v[6 + axis];
+  return C_fix(2 * axis + (ca < cb ? 0 : 1));
 }

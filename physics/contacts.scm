@@ -5,7 +5,9 @@
 
 (module (downstroke contacts)
   (detect-on-solid record-frame-start resolve-entity-collisions
-   aabb-overlap? entity-solid-support-below? resolve-pair push-apart)
+   aabb-overlap? entity-solid-support-below? resolve-pair push-apart
+   ;; for sibling modules only: push-apart without contacts.c, for tests
+   push-apart/scheme)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke broadphase)
@@ -188,10 +190,11 @@
             (cb (+ (* 2 (num b pos)) (num b size))))
         (or (< ca cb) (and (= ca cb) a-is-later?)))))
 
-  ;; Move `e` by `delta` on the axis and set that axis's velocity.
+  ;; Move `e` by `delta` on the axis and set that axis's velocity: one
+  ;; new version of the body.
   (define (shift e axis delta velocity)
     (let-values (((pos size vel) (axis-keys axis)))
-      (entity-set (entity-set e pos (+ (num e pos) delta)) vel velocity)))
+      (entity-set* e pos (+ (num e pos) delta) vel velocity)))
 
   ;; The axis of least penetration; a tie goes to y.
   (define (shallow-axis a b)
@@ -206,12 +209,27 @@
   ;; Two movable bodies: each moves half the overlap away from the other
   ;; along the shallow axis, with velocity -1 / +1 on that axis.
   ;; a is the earlier entity of the pair.
-  (define (push-apart a b)
+  (define (push-apart/scheme a b)
     (let-values (((axis depth) (shallow-axis a b)))
-      (let ((half (/ depth 2)))
-        (if (goes-negative? a b axis #f)
-            (values (shift a axis (- half) -1) (shift b axis half 1))
-            (values (shift a axis half 1) (shift b axis (- half) -1))))))
+      (push-by a b axis depth (goes-negative? a b axis #f))))
+
+  (define (push-by a b axis depth a-negative?)
+    (let ((half (/ depth 2)))
+      (if a-negative?
+          (values (shift a axis (- half) -1) (shift b axis half 1))
+          (values (shift a axis half 1) (shift b axis (- half) -1)))))
+
+  ;; The same, the axis and the side decided in C for boxes of fixnums
+  ;; and flonums (contacts.c, ds_push_sides: no generic arithmetic, no
+  ;; flonum made), the push's numbers made here as above. A crowd pushes
+  ;; more pairs per body the denser it is (docs/performance.org, "S5
+  ;; flonum at 16,000").
+  (define (push-apart a b)
+    (let ((sides (##core#inline "ds_push_sides" a b box-keys)))
+      (if (eq? sides -1)
+          (push-apart/scheme a b)
+          (let ((axis (if (fx< sides 2) 'x 'y)))
+            (push-by a b axis (overlap-on a b axis) (fx= 0 (fxand sides 1)))))))
 
   ;; Where a body was at the start of the frame's engine update, as
   ;; #:frame-start (x . y), a key the library owns: the pipeline's first

@@ -42,24 +42,27 @@ static long long ds_esc_floor(long long a, long long d) {   /* floor(a / d), d >
 }
 static long long ds_esc_ceil(long long a, long long d) { return -ds_esc_floor(-a, d); }
 
-/* Reads a coordinate (size 0) or a size (size 1): a fixnum of magnitude
-   below DS_ESC_LIMIT (a size not negative), a finite flonum (a size not
-   negative), or a position that is a rational of fixnums as above. 0 for
-   anything else, which the Scheme search takes. */
-static int ds_esc_read(C_word o, int size, ds_esc_num *v) {
-  if (o & C_FIXNUM_BIT) {
-    long long n = C_unfix(o);
+/* A fixnum n or a finite double f (flo) as the search holds it: a
+   coordinate (size 0) of magnitude below DS_ESC_LIMIT, or a size (size 1)
+   not negative and, a fixnum, below it. 0 for anything else. */
+static int ds_esc_plain(int flo, long long n, double f, int size, ds_esc_num *v) {
+  if (!flo) {
     if (n >= DS_ESC_LIMIT || n < (size ? 0 : -DS_ESC_LIMIT + 1)) return 0;
     v->flo = 0; v->n = n; v->d = 1;
     return 1;
   }
+  if (f - f != 0.0 || (size && !(f >= 0.0))) return 0;   /* NaN, an infinity */
+  v->flo = 1; v->f = f; v->d = 1;
+  return 1;
+}
+
+/* Reads a coordinate (size 0) or a size (size 1): a fixnum or finite
+   flonum as ds_esc_plain takes it, or a position that is a rational of
+   fixnums as above. 0 for anything else, which the Scheme search takes. */
+static int ds_esc_read(C_word o, int size, ds_esc_num *v) {
+  if (o & C_FIXNUM_BIT) return ds_esc_plain(0, C_unfix(o), 0.0, size, v);
   if (C_immediatep(o)) return 0;
-  if (C_block_header(o) == C_FLONUM_TAG) {
-    double f = C_flonum_magnitude(o);
-    if (f - f != 0.0 || (size && !(f >= 0.0))) return 0;   /* NaN, an infinity */
-    v->flo = 1; v->f = f; v->d = 1;
-    return 1;
-  }
+  if (C_block_header(o) == C_FLONUM_TAG) return ds_esc_plain(1, 0, C_flonum_magnitude(o), size, v);
 #if DS_ESC_RATIONALS
   if (!size && C_block_header(o) == C_RATNUM_TAG) {
     C_word a = C_block_item(o, 0), b = C_block_item(o, 1);
@@ -190,19 +193,67 @@ static ds_esc_num ds_esc_place(int i, long long line, long long tw, long long th
   return r;
 }
 
-/* #f: not for this code; #t: the box covers no solid tile; else, with
-   race #f, the fixnum 0 (it covers one), and with race #t the fixnum
-   4 line + i: straight move i (0 up, 1 down, 2 left, 3 right) is the
-   nearest, ended by tile line `line`. map is tile-grid.scm's pass-map,
-   bytes its solid grid (nbytes long). */
-static C_word ds_escape_straight(const unsigned char *bytes, C_word nbytes, C_word map, C_word race,
-                                 C_word x_, C_word y_, C_word w_, C_word h_) {
-  ds_esc_num x, y, w, h, at[4];
+/* escape.scm's diagonal-may-be-nearer? and edge-closer-than? for numbers
+   that are integers or doubles (no rationals: d is 1), each operation as
+   Scheme's generic one takes it: exact when both operands are, else one
+   IEEE operation on both as doubles (an integer here is below 2^26, a
+   double exactly). */
+static ds_esc_num ds_esc_sum(ds_esc_num a, ds_esc_num b, int sign) {
+  ds_esc_num r;
+  r.d = 1;
+  if (!a.flo && !b.flo) { r.flo = 0; r.n = sign > 0 ? a.n + b.n : a.n - b.n; }
+  else { r.flo = 1; r.f = sign > 0 ? ds_esc_double(a) + ds_esc_double(b) : ds_esc_double(a) - ds_esc_double(b); }
+  return r;
+}
+static int ds_esc_lt(ds_esc_num a, ds_esc_num b) {
+  return (!a.flo && !b.flo) ? a.n < b.n : ds_esc_double(a) < ds_esc_double(b);
+}
+
+/* near? of edge-closer-than?: a multiple of `tile` within d of side,
+   other than side itself */
+static int ds_esc_edge_near(ds_esc_num side, ds_esc_num d, long long tile) {
+  ds_esc_num reach, e, t, far;
+  t.flo = 0; t.n = tile; t.d = 1;
+  if (!side.flo && !d.flo) {
+    reach = d;
+    e.flo = 0; e.d = 1;
+    e.n = (ds_esc_floor((long long)(side.n - reach.n), tile) + 1) * tile;
+  } else {
+    /* (* 1e-9 (+ 1 (abs side) d)), then d + margin, then
+       (* (+ (floor (/ (- side reach) tile)) 1) tile), all doubles */
+    ds_esc_num one, a, margin;
+    one.flo = 0; one.n = 1; one.d = 1;
+    a = side;
+    if (a.flo) a.f = fabs(a.f); else if (a.n < 0) a.n = -a.n;
+    a = ds_esc_sum(ds_esc_sum(one, a, 1), d, 1);
+    margin.flo = 1; margin.d = 1; margin.f = 1e-9 * ds_esc_double(a);
+    reach = ds_esc_sum(d, margin, 1);
+    e.flo = 1; e.d = 1;
+    e.f = (floor(ds_esc_double(ds_esc_sum(side, reach, -1)) / (double)tile) + 1.0) * (double)tile;
+  }
+  far = ds_esc_sum(side, reach, 1);
+  if (e.flo ? e.f == ds_esc_double(side) : (!side.flo ? e.n == side.n : (double)e.n == side.f))
+    return ds_esc_lt(ds_esc_sum(e, t, 1), far);
+  return ds_esc_lt(e, far);
+}
+
+/* Whether a move on both axes could be nearer than the straight move of
+   length d (its offset that is not 0, made positive): both axes have a
+   tile edge closer than d to a side of the box. */
+static int ds_esc_diagonal_may(ds_esc_num d, ds_esc_num x, ds_esc_num y, ds_esc_num w, ds_esc_num h,
+                               long long tw, long long th) {
+  return (ds_esc_edge_near(x, d, tw) || ds_esc_edge_near(ds_esc_sum(x, w, 1), d, tw)) &&
+         (ds_esc_edge_near(y, d, th) || ds_esc_edge_near(ds_esc_sum(y, h, 1), d, th));
+}
+
+/* ds_escape_straight's answer for numbers already read (ds_esc_read,
+   ds_esc_plain); the motion kernel (motion.c) asks it too. */
+static C_word ds_escape_decide(const unsigned char *bytes, long long nbytes, C_word map, int race,
+                               ds_esc_num x, ds_esc_num y, ds_esc_num w, ds_esc_num h) {
+  ds_esc_num at[4];
   ds_esc_grid rows, cols;
   long long ncols, nrows, col0, row0, tw, th, lines[4] = {0, 0, 0, 0}, line;
   int done[4] = {0, 0, 0, 0}, moved[4] = {0, 0, 0, 0}, found, k, iter, cap;
-  if (!(ds_esc_read(x_, 0, &x) && ds_esc_read(y_, 0, &y) && ds_esc_read(w_, 1, &w) && ds_esc_read(h_, 1, &h)))
-    return C_SCHEME_FALSE;
   /* a flonum and a rational together: Scheme's sums would round the
      rational to a double, which this code does not do */
   if ((x.flo || y.flo || w.flo || h.flo) && (x.d > 1 || y.d > 1)) return C_SCHEME_FALSE;
@@ -216,7 +267,7 @@ static C_word ds_escape_straight(const unsigned char *bytes, C_word nbytes, C_wo
       tw < 1 || th < 1 || tw >= DS_ESC_LIMIT || th >= DS_ESC_LIMIT ||
       ((col0 < 0 ? -col0 : col0) + ncols + 1) * tw >= DS_ESC_LIMIT ||
       ((row0 < 0 ? -row0 : row0) + nrows + 1) * th >= DS_ESC_LIMIT ||
-      ncols * nrows > C_unfix(nbytes))
+      ncols * nrows > nbytes)
     return C_SCHEME_FALSE;
   rows.bytes = cols.bytes = bytes;
   rows.ls = ncols; rows.cs = 1; rows.line_origin = row0; rows.cell_origin = col0;
@@ -226,7 +277,7 @@ static C_word ds_escape_straight(const unsigned char *bytes, C_word nbytes, C_wo
   /* free? */
   if (!ds_esc_blocking(&rows, y, h, th, x, w, tw, 1, &found, &line)) return C_SCHEME_FALSE;
   if (!found) return C_SCHEME_TRUE;
-  if (race == C_SCHEME_FALSE) return C_fix(0);
+  if (!race) return C_fix(0);
   /* the race: each runner moves past a line of the map, so it is done
      within the map's lines; the cap only guards the loop */
   at[0] = at[1] = y; at[2] = at[3] = x;
@@ -250,4 +301,37 @@ static C_word ds_escape_straight(const unsigned char *bytes, C_word nbytes, C_wo
       done[i] = 1;
   }
   return C_SCHEME_FALSE;
+}
+
+/* #f: not for this code; #t: the box covers no solid tile; else, with
+   race #f, the fixnum 0 (it covers one), and with race #t the fixnum
+   4 line + i: straight move i (0 up, 1 down, 2 left, 3 right) is the
+   nearest, ended by tile line `line`. map is tile-grid.scm's pass-map,
+   bytes its solid grid (nbytes long). */
+static C_word ds_escape_straight(const unsigned char *bytes, C_word nbytes, C_word map, C_word race,
+                                 C_word x_, C_word y_, C_word w_, C_word h_) {
+  ds_esc_num x, y, w, h;
+  if (!(ds_esc_read(x_, 0, &x) && ds_esc_read(y_, 0, &y) && ds_esc_read(w_, 1, &w) && ds_esc_read(h_, 1, &h)))
+    return C_SCHEME_FALSE;
+  return ds_escape_decide(bytes, C_unfix(nbytes), map, race != C_SCHEME_FALSE, x, y, w, h);
+}
+
+/* For tests (escape.scm's diagonal-in-c): ds_esc_diagonal_may for the
+   straight move (dx, dy) of a box at (x, y) of w x h on tiles tw x th,
+   as diagonal-may-be-nearer? is asked it; #f when a number is not one
+   it takes (a rational, a NaN, an infinity, beyond its range). */
+static C_word ds_escape_diagonal(C_word dx_, C_word dy_, C_word x_, C_word y_, C_word w_, C_word h_,
+                                 C_word tw_, C_word th_) {
+  ds_esc_num dx, dy, x, y, w, h, d;
+  long long tw, th;
+  if (!(ds_esc_read(dx_, 0, &dx) && ds_esc_read(dy_, 0, &dy) && ds_esc_read(x_, 0, &x) &&
+        ds_esc_read(y_, 0, &y) && ds_esc_read(w_, 1, &w) && ds_esc_read(h_, 1, &h)) ||
+      dx.d > 1 || dy.d > 1 || x.d > 1 || y.d > 1 ||
+      !(tw_ & C_FIXNUM_BIT) || !(th_ & C_FIXNUM_BIT))
+    return C_SCHEME_FALSE;
+  tw = C_unfix(tw_); th = C_unfix(th_);
+  if (tw < 1 || th < 1 || tw >= DS_ESC_LIMIT || th >= DS_ESC_LIMIT) return C_SCHEME_FALSE;
+  d = (dx_ == C_fix(0)) ? dy : dx;
+  if (d.flo) d.f = fabs(d.f); else if (d.n < 0) d.n = -d.n;
+  return ds_esc_diagonal_may(d, x, y, w, h, tw, th) ? C_fix(1) : C_fix(0);
 }

@@ -9,8 +9,9 @@
   (tile-way-out
    ;; for sibling modules only: where the escape puts a body
    escape-place
-   ;; for tests only: escape.c's answer, and the search with it or without
-   straight-in-c search-way-out)
+   ;; for tests only: escape.c's answer, and the search with it or without;
+   ;; escape.c's test of diagonal-may-be-nearer?, and that procedure
+   straight-in-c search-way-out diagonal-in-c diagonal-may-be-nearer?)
 
   (import scheme (chicken base) (chicken fixnum) (chicken sort) (chicken foreign) srfi-4
           (downstroke map) (downstroke tile-grid))
@@ -173,6 +174,14 @@
             (< (+ e tile) (+ side reach))
             (< e (+ side reach)))))
     (or (near? pos) (near? (+ pos size))))
+
+  ;; escape.c's diagonal-may-be-nearer? (ds_esc_diagonal_may), which the
+  ;; motion kernel asks (motion.c, ds_flo_escape): 1 or 0, or #f when it
+  ;; does not take the numbers. For tests, which compare the two.
+  (define diagonal-in-c
+    (let ((c (foreign-lambda scheme-object "ds_escape_diagonal" scheme-object scheme-object scheme-object
+                             scheme-object scheme-object scheme-object scheme-object scheme-object)))
+      (lambda (best x y w h tw th) (c (car best) (cdr best) x y w h tw th))))
 
   (define (square v) (* v v))
   (define (norm2 m) (+ (square (car m)) (square (cdr m))))

@@ -6,6 +6,7 @@
 
 #include "physics/motion.h"
 #include "physics/arith.h"
+#include "physics/escape.c"
 #include <math.h>
 
 static long ds_min(long a, long b) { return a < b ? a : b; }
@@ -309,6 +310,78 @@ DS_INLINE int ds_flo_box_solid(const unsigned char *bytes, long cols, long rows,
   return 0;
 }
 
+/* The escape's number (escape.c) for a kernel number, 0 when the escape's
+   C does not take it (a fixnum beyond its range). */
+DS_INLINE int ds_esc_of(ds_num v, int size, ds_esc_num *e) {
+  return ds_esc_plain(v.flo, v.n, v.d, size, e);
+}
+
+/* Scheme's eqv? of two kernel numbers: the same fixnum, or doubles of the
+   same bits */
+DS_INLINE int ds_num_eqv(ds_num a, ds_num b) {
+  if (a.flo != b.flo) return 0;
+  return a.flo ? memcmp(&a.d, &b.d, sizeof(double)) == 0 : a.n == b.n;
+}
+
+/* escape.scm's step-on: the next double after p toward the sign of d (p
+   itself when d is the fixnum 0 or p is a fixnum) */
+DS_INLINE ds_num ds_num_step_on(ds_num p, ds_num d) {
+  if ((!d.flo && d.n == 0) || !p.flo) return p;
+  p.d = nextafter(p.d, (d.flo ? d.d < 0.0 : d.n < 0) ? -INFINITY : INFINITY);
+  return p;
+}
+
+/* escape.scm's escape-place, for a box of fixnum size at (x, y) of
+   integers and doubles inside solid tiles, where the escape's search ends
+   with a straight move: escape.c decides the move (ds_escape_decide, the
+   race, and ds_esc_diagonal_may, whether a move on both axes could be
+   nearer), and the move's numbers are made here as escape.scm makes
+   them, with Scheme's generic operations taken as ds_num_add takes them,
+   then settled on as escape-place settles a flonum move. 1 with (*nx,
+   *ny); 0 when the escape's C does not take the numbers, or the search
+   on both axes may be needed: the readable steps then run it. */
+static int ds_flo_escape(const unsigned char *bytes, long long nbytes, C_word map, long tw, long th,
+                         ds_num x, ds_num y, long w, long h, ds_num *nx, ds_num *ny)
+{
+  ds_esc_num ex, ey, ew, eh, dist;
+  ds_num dx, dy, zero = ds_num_int(0);
+  C_word r;
+  long long p, line;
+  int i, tries;
+  if (!(ds_esc_of(x, 0, &ex) && ds_esc_of(y, 0, &ey) && ds_esc_of(ds_num_int(w), 1, &ew) &&
+        ds_esc_of(ds_num_int(h), 1, &eh)))
+    return 0;
+  r = ds_escape_decide(bytes, nbytes, map, 1, ex, ey, ew, eh);
+  if (r == C_SCHEME_FALSE) return 0;
+  if (r == C_SCHEME_TRUE) { *nx = x; *ny = y; return 1; }
+  i = (int)(C_unfix(r) & 3);
+  line = (C_unfix(r) - i) / 4;
+  /* runner-place and runner-move */
+  p = i == 0 ? line * th - h : i == 1 ? (line + 1) * th : i == 2 ? line * tw - w : (line + 1) * tw;
+  dx = i < 2 ? zero : ds_num_sub(ds_num_int((long)p), x);
+  dy = i < 2 ? ds_num_sub(ds_num_int((long)p), y) : zero;
+  {
+    ds_num m = (!dx.flo && dx.n == 0) ? dy : dx;
+    if (!ds_esc_of(m, 0, &dist)) return 0;
+    if (dist.flo) dist.f = fabs(dist.f); else if (dist.n < 0) dist.n = -dist.n;
+    if (ds_esc_diagonal_may(dist, ex, ey, ew, eh, tw, th)) return 0;
+  }
+  if (!dx.flo && dx.n == 0 && !dy.flo && dy.n == 0) { *nx = x; *ny = y; return 1; }
+  *nx = ds_num_add(x, dx);
+  *ny = ds_num_add(y, dy);
+  for (tries = 0; tries < 8; tries++) {
+    ds_esc_num fx, fy;
+    if (!(ds_num_near(*nx) && ds_num_near(*ny) && ds_esc_of(*nx, 0, &fx) && ds_esc_of(*ny, 0, &fy)))
+      return 0;
+    r = ds_escape_decide(bytes, nbytes, map, 0, fx, fy, ew, eh);
+    if (r == C_SCHEME_FALSE) return 0;
+    if (r == C_SCHEME_TRUE) break;
+    *nx = ds_num_step_on(*nx, dx);
+    *ny = ds_num_step_on(*ny, dy);
+  }
+  return 1;
+}
+
 /* Whether a map's tile stops, in whole pixels, stay small fixnums: every
    line of cells inside the map, times the tile size, within DS_LIMIT
    (with room for a body's size), on both axes. */
@@ -374,10 +447,23 @@ static C_word __attribute__((noinline)) ds_flonum_motion(C_word out, C_word grid
        leaves where it is, and not a y of -0.0, which y + 0 would make
        0.0 there */
     sx = ds_num_sub(x2, vx);
-    if (swept && !(ds_num_zero(vx) && ds_num_zero(vy)) &&
-        ((y.flo && y.d == 0.0 && signbit(y.d)) || !ds_num_near(sx) ||
-         ds_flo_box_solid(bytes, cols, rows, col0, row0, tw, th, sx, w, y, h)))
-      return C_fix(-1);
+    if (swept && !(ds_num_zero(vx) && ds_num_zero(vy))) {
+      if ((y.flo && y.d == 0.0 && signbit(y.d)) || !ds_num_near(sx)) return C_fix(-1);
+      if (ds_flo_box_solid(bytes, cols, rows, col0, row0, tw, th, sx, w, y, h)) {
+        /* inside solid tiles: leave-solids, where the escape takes the
+           body by a straight move (ds_flo_escape); the body keeps its
+           distance from the start, and the x pass starts where the
+           escape put it */
+        ds_num nx, ny;
+        if (!(flags & DS_ESCAPE)) return C_fix(DS_INSIDE);
+        if (!ds_flo_escape(bytes, C_unfix(C_u_i_8vector_length(grid)), map, tw, th, sx, y, w, h, &nx, &ny))
+          return C_fix(-1);
+        if (!ds_num_eqv(nx, sx)) x2 = ds_num_add(nx, vx);
+        if (!ds_num_eqv(ny, y)) y = ds_num_add(ny, ds_num_int(0));
+        sx = nx;
+        if (!ds_num_near(x2) || !ds_num_near(y) || !ds_num_near(sx)) return C_fix(-1);
+      }
+    }
     if (!ds_num_zero(vx) &&
         ds_flo_tile_stop(vx, x2, w, y, h, swept, sx, 0, tw, th, bytes, 1, cols, col0, row0, cols, rows,
                          &stop)) {

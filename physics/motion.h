@@ -15,8 +15,15 @@ enum {
   DS_HAS_AY = 256, DS_HAS_ON = 512,   /* the key is present */
   DS_NOT_HERE = 1024,   /* an unknown #:collision-mode: not for the kernel */
   DS_DROP = 2048,       /* #:drop-through?: one-way tiles do not hold it */
-  DS_SLOPES = 4096      /* the map has slope cells: a body near one is not for the kernel */
+  DS_SLOPES = 4096,     /* the map has slope cells: a body near one is not for the kernel */
+  DS_ESCAPE = 8192      /* the entity has no #:tween: the flonum kernel may take it out of solid tiles */
 };
+
+/* The flonum kernel's answer for a swept body that moves and starts the
+   frame inside solid tiles, asked without DS_ESCAPE: motion.scm asks
+   again with it, unless the body has a #:tween (the escape leaves such a
+   body to the tile passes). */
+#define DS_INSIDE (-2)
 
 /* the keys to write; their new values are out[0] .. out[5] in this order.
    With DS_X_RATIO the new x is the rational out[0] / out[6], with

@@ -188,6 +188,8 @@
   (define-c-constant flag-not-here DS_NOT_HERE 1024)
   (define-c-constant flag-drop DS_DROP 2048)
   (define-c-constant flag-slopes DS_SLOPES 4096)
+  (define-c-constant flag-escape DS_ESCAPE 8192)
+  (define-c-constant inside DS_INSIDE -2)
   (define-c-constant write-x DS_WRITE_X 1)
   (define-c-constant write-y DS_WRITE_Y 2)
   (define-c-constant write-vx DS_WRITE_VX 4)
@@ -338,6 +340,26 @@
       (define (general e)
         (let ((moved (motion-steps scene e dt controls? climbers?)))
           (if ground? (detect-on-solid scene moved dt) moved)))
+      ;; An entity the flonum kernel left: `inside` is a swept body that
+      ;; moves from inside solid tiles, which it takes out of them when the
+      ;; escape's search ends with a straight move (motion.c,
+      ;; ds_flo_escape), if it has no #:tween (leave-solids leaves a
+      ;; tweened body to the tile passes). Apart from the walk, which
+      ;; asks no key more of every body.
+      (define (declined e writes)
+        (let ((writes (if (and (fx= writes inside) (not (entity-ref e #:tween #f)))
+                          (kernel-inputs e (one-way? scene-flags own-mode-flags)
+                                         (xp yp vxp vyp ayp onp skips grav x y w h vx vy ay on flags)
+                            (let ((writes (flonum-motion! out bytes map (fxior flags flag-escape) gravity skips
+                                                          x y w h vx vy ay on)))
+                              (if (fx> writes 0)
+                                  (rewrite-made e grav writes out xp yp vxp vyp ayp onp)
+                                  writes)))
+                          -1)))
+          (cond ((not (fixnum? writes)) writes)
+                ((fx= writes 0) e)
+                (else (set! declines (fx+ declines 1))
+                      (general e)))))
       (if (and tm (not map?))
           general
           (lambda (e)
@@ -354,9 +376,7 @@
                          (let ((writes (flonum-motion! out bytes map flags gravity skips
                                                        x y w h vx vy ay on)))
                            (cond ((fx= writes 0) e)
-                                 ((fx< writes 0)
-                                  (set! declines (fx+ declines 1))
-                                  (general e))
+                                 ((fx< writes 0) (declined e writes))
                                  (else (rewrite-made e grav writes out xp yp vxp vyp ayp onp)))))
                         ((fx= 0 (fxand writes (fxior x-ratio y-ratio)))
                          (rewrite-motion e grav

@@ -25,14 +25,15 @@
           (downstroke tile-collisions) (downstroke contacts) (downstroke motion)
           (downstroke groups) (downstroke touch) (downstroke ladders) (downstroke slopes))
   ;; without the names after ";; for sibling modules only" in tile-grid.scm's,
-  ;; escape.scm's, tile-collisions.scm's and motion.scm's export lists (tests/layout-test.scm checks
+  ;; escape.scm's, tile-collisions.scm's, contacts.scm's and motion.scm's export lists (tests/layout-test.scm checks
   ;; that games do not see them)
   (reexport (downstroke tuning)
             (except (downstroke tile-grid)
                     ->integer cell-of cell-ceiling span-first span-last nearest-solid-line grids
                     column-grid row-grid pass-map one-way-map?)
-            (except (downstroke escape) escape-place straight-in-c search-way-out)
+            (except (downstroke escape) escape-place straight-in-c search-way-out
+                    diagonal-in-c diagonal-may-be-nearer?)
             (except (downstroke tile-collisions)
                     swept-mode? stop-at-tiles-x stop-at-tiles-y tile-ground? climbing? slope-cut-of ceiling-cut-of)
-            (downstroke contacts) (except (downstroke motion) motion-kernel-declines)
+            (except (downstroke contacts) push-apart/scheme) (except (downstroke motion) motion-kernel-declines)
             (downstroke groups) (downstroke touch) (downstroke ladders) (only (downstroke slopes) slope-surface ceiling-surface)))

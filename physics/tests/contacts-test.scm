@@ -9,7 +9,8 @@
 ;;; offers whose boxes do not overlap is left in C (ds_pair_apart).
 
 (import scheme (chicken base) (chicken format) (chicken condition)
-        (downstroke test) (downstroke entity) (downstroke physics) (chicken fixnum))
+        (downstroke test) (downstroke entity) (downstroke physics) (chicken fixnum)
+        (only (downstroke contacts) push-apart/scheme))
 
 (define (ent . plist) (plist->entity plist))
 
@@ -158,3 +159,58 @@
                       moved)
                   (if (eq? want 'error) (+ errors 1) errors)
                   (or first (and (not (and (equal? hash want) (equal? all want))) (list round base)))))))))
+
+;; push-apart decides the axis and the side in C for boxes of fixnums
+;; below 2^50 and finite flonums (contacts.c, ds_push_sides) and makes
+;; the numbers in Scheme: the same two bodies as push-apart/scheme, field
+;; by field with eqv? (so -0.0, and a fixnum against a flonum, count), on
+;; random overlapping pairs around 0, 2^50, 2^52, 2^53, 10^15 and 2^62,
+;; ties of the two overlaps and of the centres among them.
+(define (same-body? a b)
+  (and (= (length a) (length b))
+       (let loop ((a a) (b b))
+         (or (null? a)
+             (and (eq? (caar a) (caar b)) (eqv? (cdar a) (cdar b)) (loop (cdr a) (cdr b)))))))
+
+(define (every-box-number? ok? a b)
+  (let loop ((ks '(#:x #:y #:width #:height)))
+    (or (null? ks) (and (ok? (entity-ref a (car ks) 0)) (ok? (entity-ref b (car ks) 0)) (loop (cdr ks))))))
+
+(test-group "push-apart in C: the Scheme definition's push for every kind of number"
+  (define (near base)
+    (case (rnd 9)
+      ((0 1 2) (+ base (rnd 24)))
+      ((3 4) (exact->inexact (+ base (rnd 24))))
+      ((5) (+ (exact->inexact (+ base (rnd 24))) (pick '(0.5 0.25 -0.75 1e-9 2.220446049250313e-16))))
+      ((6) (+ base (rnd 24) (/ (- (rnd 7) 3) (pick '(2 3 4)))))
+      ((7) (if (= base 0) (pick '(-0.0 0.0 0)) (+ base (rnd 24))))
+      (else (pick (list (+ base 8) +nan.0 +inf.0 1.7e308 -1.7e308 (expt 2 50) (- (expt 2 50)) (- (expt 2 50) 1))))))
+  (define (body k base)
+    (ent #:id k #:x (near base) #:y (near base) #:vx (pick '(0 1 -2 0.5))
+         #:width (pick (list 8 12 12 16 (+ 1 (rnd 20)) 12.0 0.5))
+         #:height (pick (list 8 12 12 16 (+ 1 (rnd 20)) 12.0 3.25))))
+  (define pair-bases (list 0 -40 (- (expt 2 50) 12) (- 12 (expt 2 50)) (expt 2 52) (expt 2 53) (expt 10 15) (expt 2 62)))
+  ;; where fixnums are 31 bits wide (wasm32), the bases past 2^30 are
+  ;; bignums, which the C leaves: fewer pairs, and fewer of them its
+  (define wide? (fixnum? (string->number "1099511627776")))
+  (define pairs (if wide? 20000 6000))
+  (let loop ((k 0) (different 0) (plain 0) (first #f))
+    (if (= k pairs)
+        (begin
+          (test (sprintf "~a random pairs: the same two bodies" pairs) 0 different)
+          (test-assert (sprintf "many were boxes of fixnums and flonums it takes (~a)" plain)
+                       (> plain (if wide? 5000 600)))
+          (when first (print "push-apart: first difference " first)))
+        (let* ((base (pick pair-bases))
+               (a (body k base)) (b (body (+ k 1) base))
+               (got (pair-outcome (lambda () (call-with-values (lambda () (push-apart a b)) list))))
+               (want (pair-outcome (lambda () (call-with-values (lambda () (push-apart/scheme a b)) list))))
+               (same? (if (pair? want)
+                          (and (pair? got) (same-body? (car got) (car want)) (same-body? (cadr got) (cadr want)))
+                          (equal? got want)))
+               (small? (lambda (v) (or (and (fixnum? v) (< (abs v) (expt 2 50)))
+                                       (and (flonum? v) (< (abs v) +inf.0))))))
+          (loop (+ k 1)
+                (if same? different (+ different 1))
+                (if (every-box-number? small? a b) (+ plain 1) plain)
+                (or first (and (not same?) (list a b 'c got 'scheme want))))))))

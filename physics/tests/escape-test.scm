@@ -6,7 +6,8 @@
 (import scheme (chicken base) (chicken format) (chicken process-context) (downstroke test) (downstroke entity)
         (downstroke tilemap) (downstroke scene) (downstroke pipeline) (downstroke util)
         (chicken sort) srfi-4 (only (downstroke tween) make-tween) (only (downstroke physics) *gravity* tile-way-out entity-cell-span)
-        (only (downstroke tile-grid) grids) (only (downstroke escape) escape-place straight-in-c search-way-out)
+        (only (downstroke tile-grid) grids) (only (downstroke escape) escape-place straight-in-c search-way-out
+                                                      diagonal-in-c diagonal-may-be-nearer?)
         (chicken condition))
 
 (include-relative "../../tests/bounded-support.scm")
@@ -135,7 +136,7 @@
     (test-assert (sprintf "~a cases" cases) (> cases 4700))
     (test "every body is out of the tiles, inside the room" 0 bad)))
 
-(test-group "escape: the kernel leaves such bodies to the readable steps"
+(test-group "escape: engine-pipeline equals contract-pipeline for bodies that start inside solid tiles"
   ;; random fixnum bodies in random maps, many starting inside solid tiles
   (define seed 20261202)
   (define (rnd n) (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648)) (modulo (quotient seed 16) n))
@@ -552,3 +553,48 @@
   (test "not a number: left to Scheme" #f (c 'a 20 10 10))
   (test "a map too large for its numbers: left to Scheme" #f
         (straight-in-c (es-map '((1 1) (1 1)) 16 16 (expt 2 21) 0) 0 0 10 10 #t)))
+
+;; The motion kernel takes a body out of solid tiles itself when the
+;; search ends with a straight move (physics/motion.c, ds_flo_escape); it
+;; asks escape.c whether a move on both axes could be nearer, which must
+;; be diagonal-may-be-nearer?'s answer exactly: a wrong "no" would keep a
+;; straight move where the search finds a nearer one. Random straight
+;; moves and boxes, sides on tile edges, a double off them, and moves
+;; exactly as long as the way to an edge, or a rounding either side.
+(test-group "escape in C: diagonal-may-be-nearer? on random boxes"
+  (define seed 52929)
+  (define (rnd n) (set! seed (modulo (+ (* 1103515245 seed) 12345) 2147483648)) (modulo (quotient seed 16) n))
+  (define (pick . xs) (list-ref xs (rnd (length xs))))
+  (define (off v)                       ; v, or a little way off it
+    (case (rnd 10)
+      ((0 1 2 3) v)
+      ((4) (exact->inexact v))
+      ((5) (+ v (/ (rnd 1000) 997.)))
+      ((6) (+ v (* (max 1 (abs v)) 2.3e-16 (pick 1 -1))))
+      ((7) (+ v (* 1e-10 (pick 1 -1 3 -3))))
+      ((8) (+ v (* (+ 1 (abs v)) 1e-9 (pick 1 -1))))
+      (else (pick +nan.0 +inf.0 -0.0 4503599627370496. 9007199254740992. 16777215 16777216 -16777215
+                  1.7e308 (+ v 1/2)))))
+  (let loop ((k 0) (differ '()) (taken 0) (yes 0))
+    (if (= k 20000)
+        (begin
+          (test-assert (sprintf "escape.c answered ~a of 20000 (~a yes)" taken yes)
+                       (and (> taken 12000) (> yes 3000) (> (- taken yes) 3000)))
+          (test "no answer differs" '() differ))
+        (let* ((tw (pick 16 16 8 7 1 3 12)) (th (pick 16 16 8 5 3 1 12))
+               (w (pick 0 1 (rnd 40) tw (* 2 tw) 12 12.0 (+ 12 (/ (rnd 8) 8.))))
+               (h (pick 0 1 (rnd 40) th (* 2 th) 12 12.0 (+ 12 (/ (rnd 8) 8.))))
+               (x (off (+ (* tw (- (rnd 40) 20)) (pick 0 0 (rnd tw) (- (rnd tw))))))
+               (y (off (+ (* th (- (rnd 40) 20)) (pick 0 0 (rnd th) (- (rnd th))))))
+               ;; as long as the way from a side to a tile edge, or random
+               (to-edge (lambda (side tile) (- (* tile (+ (floor (/ side tile)) (pick 0 1 2 -1))) side)))
+               (len (off (pick (rnd 40) (/ (rnd 400) 10.)
+                               (if (and (exact? x) (exact? w)) (to-edge (pick x (+ x w)) tw) (rnd 20))
+                               (if (and (exact? y) (exact? h)) (to-edge (pick y (+ y h)) th) (rnd 20)))))
+               (best (if (= 0 (rnd 2)) (cons 0 (pick len (- len))) (cons (pick len (- len)) 0)))
+               (c (condition-case (diagonal-in-c best x y w h tw th) (e () 'error)))
+               (s (condition-case (if (diagonal-may-be-nearer? best x y w h tw th) 1 0) (e () 'error))))
+          (loop (+ k 1)
+                (if (or (not c) (equal? c s)) differ (cons (list best x y w h tw th 'c c 'scheme s) differ))
+                (if c (+ taken 1) taken)
+                (if (eqv? c 1) (+ yes 1) yes))))))

@@ -560,6 +560,80 @@
                     stopped)
                 (or first-difference (and (not (pl-eqv-entity? fast slow)) (list e fast slow))))))))
 
+;; A swept body that moves from inside solid tiles: the flonum kernel
+;; takes it out of them itself when the escape's search ends with a
+;; straight move (physics/motion.c, ds_flo_escape; escape.c decides, the
+;; kernel makes the numbers as escape.scm makes them), and leaves the
+;; others (a move on both axes may be nearer, a #:tween, numbers beyond
+;; the escape's C) to the readable steps. Random maps, bodies sunk into a
+;; solid cell from any side or corner, of flonums and fixnums (a tile
+;; edge, the double next to it, -0.0, 2^52, 2^53, a NaN, far outside the
+;; map), five frames each, field by field with eqv?.
+(test-group "the flonum kernel takes bodies out of solid tiles as the readable steps do"
+  (define (solid-cell tm)               ; a random solid cell's (col . row), or #f
+    (let try ((n 0))
+      (and (< n 30)
+           (let ((c (pl-rand (tilemap-width tm))) (r (pl-rand (tilemap-height tm))))
+             (if (= 1 (tilemap-tile-at tm (+ c (tilemap-origin-col tm)) (+ r (tilemap-origin-row tm))))
+                 (cons c r)
+                 (try (+ n 1)))))))
+  ;; a coordinate whose box of `size` overlaps the cell at line `line`
+  (define (sunk line tile size)
+    (let ((v (+ (* line tile) (- (pl-rand (+ tile size 4)) size 2))))
+      (case (pl-rand 12)
+        ((0 1 2 3 4) (+ v (/ (pl-rand 1000) 1000.0)))
+        ((5 6) v)
+        ((7 8) (exact->inexact v))
+        ((9) (pl-near-double (exact->inexact (* line tile))))
+        ((10) (pl-pick -0.0 0.0 4503599627370496.0 9007199254740992.0 +nan.0 -1e300 1099511627775.5))
+        (else (+ v (pl-pick 0.25 -0.5 1e-9 -1e-9))))))
+  (let loop ((k 0) (different 0) (inside 0) (taken 0) (first-difference #f))
+    (if (= k pl-flo-bodies)
+        (begin
+          (test (sprintf "~a random bodies in and near solid tiles, five frames each: identical (eqv?)" pl-flo-bodies)
+                0 different)
+          (when first-difference (print "pipeline: first difference " first-difference))
+          (test-assert (sprintf "the kernel took many that started inside (~a of ~a)" taken inside)
+                       (> taken (quotient inside 6))))
+        (let* ((tm (pl-flo-map #f))
+               (cell (or (solid-cell tm) (cons 0 0)))
+               (w (pl-pick 1 8 12 12 16 20 33)) (h (pl-pick 1 8 12 12 16 20 33))
+               (x (sunk (+ (car cell) (tilemap-origin-col tm)) (tilemap-tile-width tm) w))
+               (y (sunk (+ (cdr cell) (tilemap-origin-row tm)) (tilemap-tile-height tm) h))
+               (e (filter-present
+                   (list (cons #:x x) (cons #:y y) (cons #:width w) (cons #:height h)
+                         (cons #:vx (pl-pick 1 -1 2 0.5 -0.25 3.75 -4.0 0 (pl-flo-speed)))
+                         (cons #:vy (pl-pick 0 1 -1 0.5 -2.5 (pl-flo-speed)))
+                         (and (pl-chance 60) (cons #:gravity? #t))
+                         (and (pl-chance 30) (cons #:on-ground? (pl-pick #t #f)))
+                         (and (pl-chance 10) (cons #:drop-through? #t))
+                         (cons #:id k))))
+               (e (if (and (pl-chance 5) (pl-all-finite? (list x)) (< (abs x) 1e9))
+                      (entity-set e #:tween (make-tween e props: (list (cons #:x (+ 40 (entity-ref e #:x))))
+                                                        duration: 100))
+                      e))
+               (scene (make-scene tilemap: tm collision-mode: 'swept))
+               (slow-step (lambda (e) (pl-six-steps scene e)))
+               (fast-step (lambda (e) ((motion-pass scene 16 #f) e)))
+               (frames (lambda (step)
+                         (pl-outcome (lambda ()
+                                       (let run ((f 0) (e e))
+                                         (if (= f 5) e (run (+ f 1) (step e))))))))
+               (start-inside? (and (pl-all-finite? (list x y))
+                                   (handle-exceptions exn #f
+                                     (let-values (((dx dy) (tile-way-out tm x y w h)))
+                                       (not (and (eqv? dx 0) (eqv? dy 0)))))))
+               (declined (motion-kernel-declines))
+               (once (pl-outcome (lambda () (fast-step e))))
+               (took? (= declined (motion-kernel-declines)))
+               (fast (frames fast-step))
+               (slow (frames slow-step)))
+          (loop (+ k 1)
+                (if (pl-eqv-entity? fast slow) different (+ different 1))
+                (if start-inside? (+ inside 1) inside)
+                (if (and start-inside? took? (pair? once)) (+ taken 1) taken)
+                (or first-difference (and (not (pl-eqv-entity? fast slow)) (list e fast slow))))))))
+
 ;; Whole frames: flonum crowds on maps (no solid entities, so ground
 ;; detection joins the motion pass) through engine-pipeline, against
 ;; contract-pipeline (the readable steps), for ten frames.
