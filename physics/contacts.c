@@ -166,3 +166,125 @@ static C_word ds_push_sides(C_word a, C_word b, C_word keys) {
   cb = 2.0 * v[4 + axis] + v[6 + axis];
   return C_fix(2 * axis + (ca < cb ? 0 : 1));
 }
+
+/* push-apart's whole push, for the boxes ds_push_sides decides: the two
+   new versions of the bodies made here in one pass, with the numbers and
+   the structure push-by and entity-set* give (contacts.scm, push-by;
+   core/entity.c, ds_entity_set_star), without the generic arithmetic, the
+   calls and the flonums between. A denser crowd pushes more pairs per
+   body (docs/performance.org, "S5: the pushes and the pair test in C").
+
+   The numbers: when the four numbers on the axis (a's and b's position
+   and size) are fixnums, the overlap is an exact integer and half of it
+   one too when it is even (an odd one is a rational: left to the
+   Scheme); else the overlap is a flonum, and every sum, min, max and
+   difference push-by's generic arithmetic makes is the one IEEE
+   operation below on the same doubles (each fixnum below 2^50 is a
+   double exactly, and so is the sum of two). A body is taken only when
+   it is a proper list of pairs (at most DS_PUSH_MAX_COPY long) holding
+   the axis's position and velocity keys once each; anything else, and
+   an overlap that is not positive, answers #f, and contacts.scm pushes
+   the pair as before. keys is #(#:x #:y #:width #:height #:vx #:vy). */
+#define DS_PUSH_MAX_COPY 1024
+
+/* Where the alist e holds pos and vel (their places and pairs), and 0
+   when e is not for this code (above). */
+static int ds_push_places(C_word e, C_word pos, C_word vel, int *ipos, C_word *ppos,
+                          int *ivel, C_word *pvel) {
+  C_word p;
+  int n;
+  *ipos = *ivel = -1;
+  for (n = 0; e != C_SCHEME_END_OF_LIST; e = C_u_i_cdr(e), n++) {
+    if (n == DS_PUSH_MAX_COPY || !DS_PAIR(e) || !DS_PAIR(p = C_u_i_car(e))) return 0;
+    if (C_u_i_car(p) == pos) { if (*ipos >= 0) return 0; *ipos = n; *ppos = p; }
+    else if (C_u_i_car(p) == vel) { if (*ivel >= 0) return 0; *ivel = n; *pvel = p; }
+  }
+  return *ipos >= 0 && *ivel >= 0;
+}
+
+/* entity-set*'s new version of e (ds_entity_set_star): the pairs up to
+   the last one whose value changes copied, each changed key's pair
+   replaced, the rest shared; e itself when nothing changes. last is
+   that place (-1: none). */
+static C_word ds_push_version(C_word **ptr, C_word e, int last, int ipos, C_word vpos,
+                              int ivel, C_word vvel) {
+  C_word head = e, tail = C_SCHEME_FALSE, cell, p;
+  int n;
+  for (n = 0; n <= last; e = C_u_i_cdr(e), n++) {
+    p = C_u_i_car(e);
+    if (n == ipos && C_u_i_cdr(p) != vpos) p = C_a_pair(ptr, C_u_i_car(p), vpos);
+    else if (n == ivel && C_u_i_cdr(p) != vvel) p = C_a_pair(ptr, C_u_i_car(p), vvel);
+    cell = C_a_pair(ptr, p, C_SCHEME_END_OF_LIST);
+    if (tail == C_SCHEME_FALSE) head = cell; else C_set_block_item(tail, 1, cell);
+    tail = cell;
+  }
+  if (tail != C_SCHEME_FALSE) C_set_block_item(tail, 1, e);
+  return head;
+}
+
+/* The number num reads for key (0 when absent); ds_push_sides has
+   checked that it is a fixnum below DS_PUSH_LIMIT or a finite flonum. */
+static inline C_word ds_push_number(C_word e, C_word key) {
+  C_word p;
+  ds_find(e, key, &p);
+  return p == C_SCHEME_FALSE ? C_fix(0) : C_u_i_cdr(p);
+}
+
+static inline double ds_push_double(C_word o) {
+  return (o & C_FIXNUM_BIT) ? (double)C_unfix(o) : C_flonum_magnitude(o);
+}
+
+static void C_ccall ds_push_pair(C_word c, C_word *av) C_noret;
+static void C_ccall ds_push_pair(C_word c, C_word *av) {
+  C_word k = av[1], a, b, keys, sides, pos, vel, pa, sa, pb, sb, ppa, pva, ppb, pvb;
+  C_word va = 0, vb = 0, vela, velb, *mem;
+  int axis, a_negative, exact, ipa, iva, ipb, ivb, lasta, lastb, words;
+  double da = 0.0, db = 0.0;
+  if (c != 5) C_kontinue(k, C_SCHEME_FALSE);
+  a = av[2]; b = av[3]; keys = av[4];
+  sides = ds_push_sides(a, b, keys);
+  if (sides == C_fix(-1)) C_kontinue(k, C_SCHEME_FALSE);
+  axis = C_unfix(sides) >> 1;
+  a_negative = (C_unfix(sides) & 1) == 0;
+  pos = C_block_item(keys, axis);
+  vel = C_block_item(keys, 4 + axis);
+  pa = ds_push_number(a, pos); sa = ds_push_number(a, C_block_item(keys, 2 + axis));
+  pb = ds_push_number(b, pos); sb = ds_push_number(b, C_block_item(keys, 2 + axis));
+  exact = (pa & sa & pb & sb & C_FIXNUM_BIT) != 0;
+  if (exact) {
+    /* overlap-1d on integers below 2^50: no fixnum overflows */
+    C_word ea = C_unfix(pa) + C_unfix(sa), eb = C_unfix(pb) + C_unfix(sb);
+    C_word depth = (ea < eb ? ea : eb) - (C_unfix(pa) > C_unfix(pb) ? C_unfix(pa) : C_unfix(pb));
+    C_word half, na, nb;
+    if (depth <= 0 || (depth & 1)) C_kontinue(k, C_SCHEME_FALSE);
+    half = depth / 2;
+    na = C_unfix(pa) + (a_negative ? -half : half);
+    nb = C_unfix(pb) + (a_negative ? half : -half);
+    if (!C_fitsinfixnump(na) || !C_fitsinfixnump(nb)) C_kontinue(k, C_SCHEME_FALSE);
+    va = C_fix(na); vb = C_fix(nb);
+  } else {
+    double xa = ds_push_double(pa), xb = ds_push_double(pb);
+    double ea = xa + ds_push_double(sa), eb = xb + ds_push_double(sb);
+    double depth = (ea < eb ? ea : eb) - (xa > xb ? xa : xb), half;
+    if (!(depth > 0.0)) C_kontinue(k, C_SCHEME_FALSE);
+    half = depth / 2.0;
+    da = xa + (a_negative ? -half : half);
+    db = xb + (a_negative ? half : -half);
+  }
+  vela = C_fix(a_negative ? -1 : 1);
+  velb = C_fix(a_negative ? 1 : -1);
+  if (!ds_push_places(a, pos, vel, &ipa, &ppa, &iva, &pva) ||
+      !ds_push_places(b, pos, vel, &ipb, &ppb, &ivb, &pvb))
+    C_kontinue(k, C_SCHEME_FALSE);
+  /* the last place whose value changes: a new flonum always does */
+  lasta = (!exact || C_u_i_cdr(ppa) != va) ? ipa : -1;
+  if (C_u_i_cdr(pva) != vela && iva > lasta) lasta = iva;
+  lastb = (!exact || C_u_i_cdr(ppb) != vb) ? ipb : -1;
+  if (C_u_i_cdr(pvb) != velb && ivb > lastb) lastb = ivb;
+  words = 3 * (lasta + 1) + 3 * (lastb + 1) + 12 + 3 + (exact ? 0 : 2 * C_SIZEOF_FLONUM);
+  if (!C_demand(words)) C_save_and_reclaim((void *)ds_push_pair, c, av);
+  mem = C_alloc(words);
+  if (!exact) { va = C_flonum(&mem, da); vb = C_flonum(&mem, db); }
+  C_kontinue(k, C_a_pair(&mem, ds_push_version(&mem, a, lasta, ipa, va, iva, vela),
+                         ds_push_version(&mem, b, lastb, ipb, vb, ivb, velb)));
+}

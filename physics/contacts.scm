@@ -6,8 +6,9 @@
 (module (downstroke contacts)
   (detect-on-solid record-frame-start resolve-entity-collisions
    aabb-overlap? entity-solid-support-below? resolve-pair push-apart
-   ;; for sibling modules only: push-apart without contacts.c, for tests
-   push-apart/scheme)
+   ;; for sibling modules only: push-apart without contacts.c, and
+   ;; contacts.c's whole push, for tests
+   push-apart/scheme push-apart/c push-keys)
 
   (import scheme (chicken base) (chicken fixnum) (chicken foreign)
           (downstroke entity) (downstroke scene) (downstroke broadphase)
@@ -219,17 +220,34 @@
           (values (shift a axis (- half) -1) (shift b axis half 1))
           (values (shift a axis half 1) (shift b axis (- half) -1)))))
 
-  ;; The same, the axis and the side decided in C for boxes of fixnums
-  ;; and flonums (contacts.c, ds_push_sides: no generic arithmetic, no
-  ;; flonum made), the push's numbers made here as above. A crowd pushes
-  ;; more pairs per body the denser it is (docs/performance.org, "S5
-  ;; flonum at 16,000").
+  ;; The same, made in C for the common bodies (contacts.c, ds_push_pair:
+  ;; both new versions in one pass, no generic arithmetic); a pair it
+  ;; leaves has the axis and the side decided in C for boxes of fixnums
+  ;; and flonums (ds_push_sides: no flonum made), and the push's numbers
+  ;; made here as above. A crowd pushes more pairs per body the denser it
+  ;; is (docs/performance.org, "S5: the pushes and the pair test in C").
   (define (push-apart a b)
+    (let ((pushed (push-apart/c a b push-keys)))
+      (if (pair? pushed)
+          (values (car pushed) (cdr pushed))
+          (push-apart/sides a b))))
+
+  (define (push-apart/sides a b)
     (let ((sides (##core#inline "ds_push_sides" a b box-keys)))
       (if (eq? sides -1)
           (push-apart/scheme a b)
           (let ((axis (if (fx< sides 2) 'x 'y)))
             (push-by a b axis (overlap-on a b axis) (fx= 0 (fxand sides 1)))))))
+
+  ;; (push-apart/c a b keys): the two pushed bodies as a pair, or #f for
+  ;; a pair the C leaves.
+  (define push-apart/c
+    ((foreign-primitive scheme-object ()
+       "C_word *a = C_alloc(2);"
+       "a[0] = C_CLOSURE_TYPE | 1; a[1] = (C_word)ds_push_pair;"
+       "C_return((C_word)a);")))
+
+  (define push-keys (vector #:x #:y #:width #:height #:vx #:vy))
 
   ;; Where a body was at the start of the frame's engine update, as
   ;; #:frame-start (x . y), a key the library owns: the pipeline's first

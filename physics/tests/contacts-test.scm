@@ -10,7 +10,7 @@
 
 (import scheme (chicken base) (chicken format) (chicken condition)
         (downstroke test) (downstroke entity) (downstroke physics) (chicken fixnum)
-        (only (downstroke contacts) push-apart/scheme))
+        (only (downstroke contacts) push-apart/scheme push-apart/c push-keys))
 
 (define (ent . plist) (plist->entity plist))
 
@@ -213,4 +213,67 @@
           (loop (+ k 1)
                 (if same? different (+ different 1))
                 (if (every-box-number? small? a b) (+ plain 1) plain)
+                (or first (and (not same?) (list a b 'c got 'scheme want))))))))
+
+;; The whole push in C (contacts.c, ds_push_pair) makes both pushed
+;; bodies itself for boxes of fixnums and flonums: the same two bodies as
+;; push-apart/scheme, key by key in order with eqv?, on random pairs of
+;; bodies holding both velocities in any order (sometimes one twice, or
+;; none), around 0, the 31-bit fixnum limit (2^30), 2^50, 2^52 and 2^53,
+;; with -0.0, rationals, odd and even overlaps, and velocities that are
+;; already the push's (so a pair is kept, not copied).
+(test-group "push-apart/c: the Scheme definition's two bodies, or no answer"
+  (define (near base)
+    (case (rnd 10)
+      ((0 1 2) (+ base (rnd 24)))
+      ((3 4) (exact->inexact (+ base (rnd 24))))
+      ((5) (+ (exact->inexact (+ base (rnd 24))) (pick '(0.5 0.25 -0.75 1e-9 2.220446049250313e-16))))
+      ((6) (+ base (rnd 24) (/ (- (rnd 7) 3) (pick '(2 3 4)))))
+      ((7) (if (= base 0) (pick '(-0.0 0.0 0)) (+ base (rnd 24))))
+      ((8) (+ base (rnd 24) (pick '(0 1))))
+      (else (pick (list (+ base 8) +nan.0 1.7e308 (expt 2 50) (- (expt 2 50)) (- (expt 2 50) 1)
+                        (- (expt 2 30) 1) (- (expt 2 30)) (expt 2 29))))))
+  (define (shuffle xs)
+    (if (null? xs) xs
+        (let ((x (list-ref xs (rnd (length xs)))))
+          (cons x (shuffle (let drop ((ys xs)) (if (eq? (car ys) x) (cdr ys) (cons (car ys) (drop (cdr ys))))))))))
+  (define (body k base)
+    (let* ((pairs (list (cons #:id k) (cons #:x (near base)) (cons #:y (near base))
+                        (cons #:width (pick (list 8 12 12 16 (+ 1 (rnd 20)) 12.0 0.5)))
+                        (cons #:height (pick (list 8 12 12 16 (+ 1 (rnd 20)) 12.0 3.25)))
+                        (cons #:vx (pick '(0 1 -1 0.5 -2))) (cons #:vy (pick '(0 1 -1 -0.0 3)))
+                        (cons #:solid? #t)))
+           (pairs (case (rnd 12)
+                    ((0) (cons (cons #:vy 7) pairs))                     ; a key twice
+                    ((1) (filter-out #:vy pairs))                         ; a velocity absent
+                    ((2) (filter-out #:x pairs))                          ; a position absent (0)
+                    (else pairs))))
+      (shuffle pairs)))
+  (define (filter-out key pairs)
+    (let loop ((ps pairs)) (cond ((null? ps) '()) ((eq? (caar ps) key) (loop (cdr ps))) (else (cons (car ps) (loop (cdr ps)))))))
+  (define bases (list 0 -40 (- (expt 2 29) 12) (- 12 (expt 2 29)) (- (expt 2 30) 12) (- 12 (expt 2 30))
+                      (- (expt 2 50) 12) (- 12 (expt 2 50)) (expt 2 52) (expt 2 53)))
+  (define pairs 20000)
+  ;; where fixnums are 31 bits wide, the bases from 2^30 on are bignums,
+  ;; which the C leaves
+  (define wide? (fixnum? (string->number "1099511627776")))
+  (let loop ((k 0) (different 0) (answered 0) (exact 0) (first #f))
+    (if (= k pairs)
+        (begin
+          (test (sprintf "~a random pairs: the C's answers are the Scheme's bodies" pairs) 0 different)
+          (test-assert (sprintf "it answered for many (~a), of integers too (~a)" answered exact)
+                       (and (> answered (if wide? 1200 500)) (> exact (if wide? 60 20))))
+          (when first (print "push-apart/c: first difference " first)))
+        (let* ((base (pick bases))
+               (a (body k base)) (b (body (+ k 1) base))
+               (got (pair-outcome (lambda () (push-apart/c a b push-keys))))
+               (want (pair-outcome (lambda () (call-with-values (lambda () (push-apart/scheme a b)) list))))
+               (same? (or (not got)
+                          (and (pair? got) (pair? want)
+                               (same-body? (car got) (car want)) (same-body? (cdr got) (cadr want))))))
+          (loop (+ k 1)
+                (if same? different (+ different 1))
+                (if (pair? got) (+ answered 1) answered)
+                (if (and (pair? got) (fixnum? (entity-ref (car got) #:x 0)) (fixnum? (entity-ref (car got) #:y 0)))
+                    (+ exact 1) exact)
                 (or first (and (not same?) (list a b 'c got 'scheme want))))))))
