@@ -10,7 +10,7 @@
    ;; contacts.c's whole push, for tests
    push-apart/scheme push-apart/c push-keys)
 
-  (import scheme (chicken base) (chicken fixnum) (chicken foreign)
+  (import scheme (chicken base) (chicken fixnum) (chicken foreign) (chicken blob)
           (downstroke entity) (downstroke scene) (downstroke broadphase)
           (downstroke body) (downstroke tuning) (downstroke tile-collisions))
 
@@ -452,16 +452,19 @@
                           (let ((dy (descent (vector-ref all (vector-ref idx p)))))
                             (vector-set! v p dy)
                             (loop (fx+ p 1) (or any? dy))))))))
+      ;; Without lifts going down, each collider's box as ds_pair_apart
+      ;; reads it, kept in C (contacts.c, ds_keep_box) and read again only
+      ;; when a visit gives the body a new version.
+      (define boxes (and (not drops) (fx>= n 2) (take-kept-boxes n)))
       ;; true when the pair moved. Without lifts going down, a pair whose
       ;; boxes (fixnums and flonums) do not overlap is left at once, by
-      ;; the test resolve-colliding-pair starts with (contacts.c,
-      ;; ds_pair_apart): most pairs the hash offers are such, and each
-      ;; would otherwise be a call returning two values.
+      ;; the test resolve-colliding-pair starts with, on the kept boxes
+      ;; (contacts.c, ds_kept_apart): most pairs the hash offers are such,
+      ;; and each would otherwise be a call returning two values.
       (define (visit! p q)
-        (let* ((i (vector-ref idx p)) (j (vector-ref idx q))
-               (a0 (vector-ref all i)) (b0 (vector-ref all j)))
-          (and (not (and (not drops) (eq? (##core#inline "ds_pair_apart" a0 b0 box-keys) 1)))
-               (visit-pair! i j a0 b0 p q))))
+        (and (not (and boxes (eq? (##core#inline "ds_kept_apart" boxes p q) 1)))
+             (let* ((i (vector-ref idx p)) (j (vector-ref idx q)))
+               (visit-pair! i j (vector-ref all i) (vector-ref all j) p q))))
       (define (visit-pair! i j a0 b0 p q)
         (let-values (((a b) (if drops
                                 (resolve-pair-with-lifts a0 b0 (vector-ref drops p) (vector-ref drops q))
@@ -469,6 +472,9 @@
           (and (not (and (eq? a a0) (eq? b b0)))
                (begin (vector-set! all i a)
                       (vector-set! all j b)
+                      (when boxes
+                        (##core#inline "ds_keep_box" boxes p a box-keys)
+                        (##core#inline "ds_keep_box" boxes q b box-keys))
                       #t))))
       ;; A lift going down is filed with the space its top swept, so that
       ;; the spatial hash visits the riders it left above it.
@@ -482,6 +488,9 @@
       (if (< n 2)
           entities
           (begin
+            (when boxes
+              (do ((p 0 (fx+ p 1))) ((fx= p n))
+                (##core#inline "ds_keep_box" boxes p (vector-ref all (vector-ref idx p)) box-keys)))
             (case (if (eq? method 'auto)
                       (if (< n spatial-hash-threshold) 'all-pairs 'spatial-hash)
                       method)
@@ -492,6 +501,18 @@
               ((spatial-hash) (visit-pairs-in-order n box visit!))
               (else (error 'resolve-entity-collisions
                            "method must be 'auto, 'all-pairs or 'spatial-hash" method)))
+            (when boxes (set! spare-boxes boxes))
             (vector->list all)))))
+
+  ;; The blob of kept boxes (contacts.c, ds_kept_boxes: 5 doubles a
+  ;; collider) of the last pass, used again by the next: a crowd's pass
+  ;; would otherwise leave one in the heap every frame. A pass takes it
+  ;; and gives it back when done, so two passes never share one.
+  (define spare-boxes #f)
+  (define (take-kept-boxes n)
+    (let ((bytes (fx* 8 (fx+ 1 (fx* 5 n))))
+          (b spare-boxes))
+      (set! spare-boxes #f)
+      (if (and b (fx>= (blob-size b) bytes)) b (make-blob bytes))))
 
 )
