@@ -146,25 +146,37 @@ static C_word ds_pair_apart(C_word a, C_word b, C_word keys) {
 #else
 # define DS_PUSH_LIMIT ((C_word)1 << 29)
 #endif
+/* The decision from the eight numbers as doubles: v[0..3] a's x, y,
+   width, height, v[4..7] b's. */
+static inline int ds_push_decide(const double *v) {
+  double ox = fmin(v[0] + v[2], v[4] + v[6]) - fmax(v[0], v[4]);
+  double oy = fmin(v[1] + v[3], v[5] + v[7]) - fmax(v[1], v[5]);
+  int axis = ox < oy ? 0 : 1;
+  double ca = 2.0 * v[axis] + v[axis + 2], cb = 2.0 * v[4 + axis] + v[6 + axis];
+  return 2 * axis + (ca < cb ? 0 : 1);
+}
+
+/* *d = o as a double when it is a number ds_push_sides takes (a fixnum
+   below DS_PUSH_LIMIT in magnitude or a finite flonum); 0 otherwise. */
+static inline int ds_push_real(C_word o, double *d) {
+  if (o & C_FIXNUM_BIT) {
+    if (C_unfix(o) >= DS_PUSH_LIMIT || C_unfix(o) <= -DS_PUSH_LIMIT) return 0;
+    *d = (double)C_unfix(o);
+    return 1;
+  }
+  return ds_overlap_real(o, d);
+}
+
 static C_word ds_push_sides(C_word a, C_word b, C_word keys) {
-  double v[8], ox, oy, ca, cb;
+  double v[8];
   C_word p, o;
-  int i, axis;
+  int i;
   for (i = 0; i < 8; i++) {
     if (!ds_find(i < 4 ? a : b, C_block_item(keys, i & 3), &p)) return C_fix(-1);
     o = p == C_SCHEME_FALSE ? C_fix(0) : C_u_i_cdr(p);
-    if (o & C_FIXNUM_BIT) {
-      if (C_unfix(o) >= DS_PUSH_LIMIT || C_unfix(o) <= -DS_PUSH_LIMIT) return C_fix(-1);
-      v[i] = (double)C_unfix(o);
-    } else if (!ds_overlap_real(o, &v[i])) return C_fix(-1);
+    if (!ds_push_real(o, &v[i])) return C_fix(-1);
   }
-  /* keys are #(#:x #:y #:width #:height): v[0..3] a's, v[4..7] b's */
-  ox = fmin(v[0] + v[2], v[4] + v[6]) - fmax(v[0], v[4]);
-  oy = fmin(v[1] + v[3], v[5] + v[7]) - fmax(v[1], v[5]);
-  axis = ox < oy ? 0 : 1;
-  ca = 2.0 * v[axis] + v[axis + 2];
-  cb = 2.0 * v[4 + axis] + v[6 + axis];
-  return C_fix(2 * axis + (ca < cb ? 0 : 1));
+  return C_fix(ds_push_decide(v));
 }
 
 /* push-apart's whole push, for the boxes ds_push_sides decides: the two
@@ -187,19 +199,27 @@ static C_word ds_push_sides(C_word a, C_word b, C_word keys) {
    the pair as before. keys is #(#:x #:y #:width #:height #:vx #:vy). */
 #define DS_PUSH_MAX_COPY 1024
 
-/* Where the alist e holds pos and vel (their places and pairs), and 0
-   when e is not for this code (above). */
-static int ds_push_places(C_word e, C_word pos, C_word vel, int *ipos, C_word *ppos,
-                          int *ivel, C_word *pvel) {
-  C_word p;
-  int n;
-  *ipos = *ivel = -1;
+/* One walk of the alist e for the six keys (#(#:x #:y #:width #:height
+   #:vx #:vy)): the first pair of each (C_SCHEME_FALSE: none) in pair[],
+   its place in place[], and in twice a bit for each key held more than
+   once; 0 when e is not a proper list of pairs of at most
+   DS_PUSH_MAX_COPY. */
+static int ds_push_walk(C_word e, C_word keys, C_word *pair, int *place, int *twice) {
+  C_word p, k;
+  int n, i;
+  *twice = 0;
+  for (i = 0; i < 6; i++) { pair[i] = C_SCHEME_FALSE; place[i] = -1; }
   for (n = 0; e != C_SCHEME_END_OF_LIST; e = C_u_i_cdr(e), n++) {
     if (n == DS_PUSH_MAX_COPY || !DS_PAIR(e) || !DS_PAIR(p = C_u_i_car(e))) return 0;
-    if (C_u_i_car(p) == pos) { if (*ipos >= 0) return 0; *ipos = n; *ppos = p; }
-    else if (C_u_i_car(p) == vel) { if (*ivel >= 0) return 0; *ivel = n; *pvel = p; }
+    k = C_u_i_car(p);
+    for (i = 0; i < 6; i++)
+      if (k == C_block_item(keys, i)) {
+        if (place[i] >= 0) *twice |= 1 << i;
+        else { place[i] = n; pair[i] = p; }
+        break;
+      }
   }
-  return *ipos >= 0 && *ivel >= 0;
+  return 1;
 }
 
 /* entity-set*'s new version of e (ds_entity_set_star): the pairs up to
@@ -222,34 +242,36 @@ static C_word ds_push_version(C_word **ptr, C_word e, int last, int ipos, C_word
   return head;
 }
 
-/* The number num reads for key (0 when absent); ds_push_sides has
-   checked that it is a fixnum below DS_PUSH_LIMIT or a finite flonum. */
-static inline C_word ds_push_number(C_word e, C_word key) {
-  C_word p;
-  ds_find(e, key, &p);
-  return p == C_SCHEME_FALSE ? C_fix(0) : C_u_i_cdr(p);
-}
-
 static inline double ds_push_double(C_word o) {
   return (o & C_FIXNUM_BIT) ? (double)C_unfix(o) : C_flonum_magnitude(o);
 }
 
 static void C_ccall ds_push_pair(C_word c, C_word *av) C_noret;
 static void C_ccall ds_push_pair(C_word c, C_word *av) {
-  C_word k = av[1], a, b, keys, sides, pos, vel, pa, sa, pb, sb, ppa, pva, ppb, pvb;
-  C_word va = 0, vb = 0, vela, velb, *mem;
-  int axis, a_negative, exact, ipa, iva, ipb, ivb, lasta, lastb, words;
-  double da = 0.0, db = 0.0;
+  C_word k = av[1], a, b, keys, pa, sa, pb, sb, ppa, pva, ppb, pvb;
+  C_word va = 0, vb = 0, vela, velb, *mem, pairs[12], box[8];
+  int axis, sides, a_negative, exact, ipa, iva, ipb, ivb, lasta, lastb, words, i;
+  int places[12], twice, twice_b;
+  double da = 0.0, db = 0.0, v[8];
   if (c != 5) C_kontinue(k, C_SCHEME_FALSE);
   a = av[2]; b = av[3]; keys = av[4];
-  sides = ds_push_sides(a, b, keys);
-  if (sides == C_fix(-1)) C_kontinue(k, C_SCHEME_FALSE);
-  axis = C_unfix(sides) >> 1;
-  a_negative = (C_unfix(sides) & 1) == 0;
-  pos = C_block_item(keys, axis);
-  vel = C_block_item(keys, 4 + axis);
-  pa = ds_push_number(a, pos); sa = ds_push_number(a, C_block_item(keys, 2 + axis));
-  pb = ds_push_number(b, pos); sb = ds_push_number(b, C_block_item(keys, 2 + axis));
+  if (!ds_push_walk(a, keys, pairs, places, &twice) || !ds_push_walk(b, keys, pairs + 6, places + 6, &twice_b))
+    C_kontinue(k, C_SCHEME_FALSE);
+  /* the box numbers as num reads them (0 when absent), as ds_push_sides
+     takes them */
+  for (i = 0; i < 8; i++) {
+    C_word p = pairs[(i & 3) + (i < 4 ? 0 : 6)];
+    box[i] = p == C_SCHEME_FALSE ? C_fix(0) : C_u_i_cdr(p);
+    if (!ds_push_real(box[i], &v[i])) C_kontinue(k, C_SCHEME_FALSE);
+  }
+  sides = ds_push_decide(v);
+  axis = sides >> 1;
+  a_negative = (sides & 1) == 0;
+  /* the axis's position and velocity: held once each by both */
+  if (places[axis] < 0 || places[4 + axis] < 0 || places[6 + axis] < 0 || places[10 + axis] < 0 ||
+      ((twice | twice_b) & (0x11 << axis)))
+    C_kontinue(k, C_SCHEME_FALSE);
+  pa = box[axis]; sa = box[2 + axis]; pb = box[4 + axis]; sb = box[6 + axis];
   exact = (pa & sa & pb & sb & C_FIXNUM_BIT) != 0;
   if (exact) {
     /* overlap-1d on integers below 2^50: no fixnum overflows */
@@ -273,9 +295,8 @@ static void C_ccall ds_push_pair(C_word c, C_word *av) {
   }
   vela = C_fix(a_negative ? -1 : 1);
   velb = C_fix(a_negative ? 1 : -1);
-  if (!ds_push_places(a, pos, vel, &ipa, &ppa, &iva, &pva) ||
-      !ds_push_places(b, pos, vel, &ipb, &ppb, &ivb, &pvb))
-    C_kontinue(k, C_SCHEME_FALSE);
+  ipa = places[axis]; ppa = pairs[axis]; iva = places[4 + axis]; pva = pairs[4 + axis];
+  ipb = places[6 + axis]; ppb = pairs[6 + axis]; ivb = places[10 + axis]; pvb = pairs[10 + axis];
   /* the last place whose value changes: a new flonum always does */
   lasta = (!exact || C_u_i_cdr(ppa) != va) ? ipa : -1;
   if (C_u_i_cdr(pva) != vela && iva > lasta) lasta = iva;
@@ -308,9 +329,12 @@ static C_word ds_keep_box(C_word blob, C_word p, C_word e, C_word keys) {
   return C_SCHEME_UNDEFINED;
 }
 
-/* ds_pair_apart's answer for the colliders p and q, from their kept boxes. */
+/* ds_pair_apart's answer for the colliders p and q, from their kept
+   boxes: 1 apart, 0 for the Scheme to decide; and 2 when both boxes are
+   taken and overlap, which is ds_boxes_overlap's 1 for the numbers
+   resolve-colliding-pair reads (the same first pairs, the same tests). */
 static C_word ds_kept_apart(C_word blob, C_word p, C_word q) {
   double *a = ds_kept_boxes(blob) + 5 * C_unfix(p), *b = ds_kept_boxes(blob) + 5 * C_unfix(q);
   if (a[4] == 0.0 || b[4] == 0.0) return C_fix(0);
-  return C_fix(!(a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3]));
+  return C_fix(a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3] ? 2 : 1);
 }

@@ -461,14 +461,16 @@
       ;; the test resolve-colliding-pair starts with, on the kept boxes
       ;; (contacts.c, ds_kept_apart): most pairs the hash offers are such,
       ;; and each would otherwise be a call returning two values.
+      ;; A pair whose kept boxes overlap goes to collide at once.
       (define (visit! p q)
-        (and (not (and boxes (eq? (##core#inline "ds_kept_apart" boxes p q) 1)))
-             (let* ((i (vector-ref idx p)) (j (vector-ref idx q)))
-               (visit-pair! i j (vector-ref all i) (vector-ref all j) p q))))
-      (define (visit-pair! i j a0 b0 p q)
-        (let-values (((a b) (if drops
-                                (resolve-pair-with-lifts a0 b0 (vector-ref drops p) (vector-ref drops q))
-                                (resolve-colliding-pair a0 b0))))
+        (let ((kept (if boxes (##core#inline "ds_kept_apart" boxes p q) 0)))
+          (and (not (eq? kept 1))
+               (let* ((i (vector-ref idx p)) (j (vector-ref idx q)))
+                 (visit-pair! i j (vector-ref all i) (vector-ref all j) p q (eq? kept 2))))))
+      (define (visit-pair! i j a0 b0 p q overlap?)
+        (let-values (((a b) (cond (drops (resolve-pair-with-lifts a0 b0 (vector-ref drops p) (vector-ref drops q)))
+                                  (overlap? (collide a0 b0))
+                                  (else (resolve-colliding-pair a0 b0)))))
           (and (not (and (eq? a a0) (eq? b b0)))
                (begin (vector-set! all i a)
                       (vector-set! all j b)
