@@ -100,13 +100,11 @@ static C_word ds_ground_scan(C_word buf, C_word from, C_word count, C_word solid
   return C_fix(-1);
 }
 
-/* 1 when the boxes of the entities a and b, read as resolve-colliding-pair
-   reads them (a key's first pair, 0 when absent), are numbers this file
-   takes and do not overlap; 0 otherwise (they overlap, or the Scheme
-   decides). keys is #(#:x #:y #:width #:height). */
-/* ds_find_real of the four keys in e, in one walk of e: each key's first
-   pair is the one ds_find finds, and a key is missing (0.0) or unreadable
-   (0) exactly when ds_find_real says so. */
+/* The box of the entity e as resolve-colliding-pair reads it (a key's
+   first pair, 0 when absent): ds_find_real of the four keys in e, in one
+   walk of e: each key's first pair is the one ds_find finds, and a key
+   is missing (0.0) or unreadable (0) exactly when ds_find_real says so.
+   keys is #(#:x #:y #:width #:height ...). */
 static inline int ds_find_box(C_word e, C_word keys, double *v) {
   C_word k[4], p;
   int found = 0, i;
@@ -123,14 +121,8 @@ static inline int ds_find_box(C_word e, C_word keys, double *v) {
   return 1;
 }
 
-static C_word ds_pair_apart(C_word a, C_word b, C_word keys) {
-  double v[8];
-  if (!ds_find_box(a, keys, v) || !ds_find_box(b, keys, v + 4)) return C_fix(0);
-  return C_fix(!(v[0] < v[4] + v[6] && v[4] < v[0] + v[2] && v[1] < v[5] + v[7] && v[5] < v[1] + v[3]));
-}
-
 /* push-apart's two decisions for the boxes of a and b (read as
-   ds_pair_apart reads them), when every number is a fixnum below 2^50 in
+   ds_find_box reads them), when every number is a fixnum below 2^50 in
    magnitude or a finite flonum: the axis of least overlap (shallow-axis:
    x when the x overlap is less than the y overlap) and whether a goes to
    the negative side (goes-negative?: its 2 pos + size is less than b's).
@@ -316,8 +308,8 @@ static void C_ccall ds_push_pair(C_word c, C_word *av) {
    the test of a pair the hash offers is four comparisons, not two walks
    of two alists. A denser crowd is offered more pairs per body. The
    blob holds 5 doubles a collider, from its first 8-aligned byte: x, y,
-   width, height, and 1.0 when ds_find_box took the body (0.0: the pair
-   is the Scheme's, as ds_pair_apart answers 0 for it). */
+   width, height, and 1.0 when ds_find_box took the body (0.0: a pair of
+   it is the Scheme's to test). */
 static inline double *ds_kept_boxes(C_word blob) {
   C_uword at = (C_uword)C_data_pointer(blob);
   return (double *)((at + 7) & ~(C_uword)7);
@@ -329,8 +321,8 @@ static C_word ds_keep_box(C_word blob, C_word p, C_word e, C_word keys) {
   return C_SCHEME_UNDEFINED;
 }
 
-/* ds_pair_apart's answer for the colliders p and q, from their kept
-   boxes: 1 apart, 0 for the Scheme to decide; and 2 when both boxes are
+/* Whether the colliders p and q are apart, from their kept boxes: 1
+   apart, 0 for the Scheme to decide; and 2 when both boxes are
    taken and overlap, which is ds_boxes_overlap's 1 for the numbers
    resolve-colliding-pair reads (the same first pairs, the same tests). */
 static C_word ds_kept_apart(C_word blob, C_word p, C_word q) {

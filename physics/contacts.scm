@@ -452,8 +452,8 @@
                           (let ((dy (descent (vector-ref all (vector-ref idx p)))))
                             (vector-set! v p dy)
                             (loop (fx+ p 1) (or any? dy))))))))
-      ;; Without lifts going down, each collider's box as ds_pair_apart
-      ;; reads it, kept in C (contacts.c, ds_keep_box) and read again only
+      ;; Without lifts going down, each collider's box as
+      ;; resolve-colliding-pair reads it, kept in C (contacts.c, ds_keep_box) and read again only
       ;; when a visit gives the body a new version.
       (define boxes (and (not drops) (fx>= n 2) (take-kept-boxes n)))
       ;; true when the pair moved. Without lifts going down, a pair whose

@@ -6,7 +6,7 @@
 ;;; solids on, the candidates near a body's feet come from a hash of their
 ;;; tops, judged in C (ds_ground_scan).
 ;;; The pair pass (docs/physics.org, "Solid entities"): a pair the hash
-;;; offers whose boxes do not overlap is left in C (ds_pair_apart).
+;;; offers whose boxes do not overlap is left in C (ds_kept_apart).
 
 (import scheme (chicken base) (chicken format) (chicken condition)
         (downstroke test) (downstroke entity) (downstroke physics) (chicken fixnum)
