@@ -188,7 +188,11 @@ static C_word ds_push_sides(C_word a, C_word b, C_word keys) {
    it is a proper list of pairs (at most DS_PUSH_MAX_COPY long) holding
    the axis's position and velocity keys once each; anything else, and
    an overlap that is not positive, answers #f, and contacts.scm pushes
-   the pair as before. keys is #(#:x #:y #:width #:height #:vx #:vy). */
+   the pair as before; -1 when the bodies are proper lists but a number
+   of their boxes is not one ds_push_sides takes (a rational, a bignum),
+   so that contacts.scm goes to the Scheme push at once, where
+   ds_push_sides would answer -1 too after walking them again.
+   keys is #(#:x #:y #:width #:height #:vx #:vy). */
 #define DS_PUSH_MAX_COPY 1024
 
 /* One walk of the alist e for the six keys (#(#:x #:y #:width #:height
@@ -247,6 +251,8 @@ static void C_ccall ds_push_pair(C_word c, C_word *av) {
   double da = 0.0, db = 0.0, v[8];
   if (c != 5) C_kontinue(k, C_SCHEME_FALSE);
   a = av[2]; b = av[3]; keys = av[4];
+  if (C_immediatep(keys) || C_header_bits(keys) != C_VECTOR_TYPE || C_header_size(keys) < 6)
+    C_kontinue(k, C_SCHEME_FALSE);
   if (!ds_push_walk(a, keys, pairs, places, &twice) || !ds_push_walk(b, keys, pairs + 6, places + 6, &twice_b))
     C_kontinue(k, C_SCHEME_FALSE);
   /* the box numbers as num reads them (0 when absent), as ds_push_sides
@@ -254,7 +260,7 @@ static void C_ccall ds_push_pair(C_word c, C_word *av) {
   for (i = 0; i < 8; i++) {
     C_word p = pairs[(i & 3) + (i < 4 ? 0 : 6)];
     box[i] = p == C_SCHEME_FALSE ? C_fix(0) : C_u_i_cdr(p);
-    if (!ds_push_real(box[i], &v[i])) C_kontinue(k, C_SCHEME_FALSE);
+    if (!ds_push_real(box[i], &v[i])) C_kontinue(k, C_fix(-1));
   }
   sides = ds_push_decide(v);
   axis = sides >> 1;

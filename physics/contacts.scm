@@ -228,9 +228,9 @@
   ;; is (docs/performance.org, "S5: the pushes and the pair test in C").
   (define (push-apart a b)
     (let ((pushed (push-apart/c a b push-keys)))
-      (if (pair? pushed)
-          (values (car pushed) (cdr pushed))
-          (push-apart/sides a b))))
+      (cond ((pair? pushed) (values (car pushed) (cdr pushed)))
+            ((eq? pushed -1) (push-apart/scheme a b))     ; a rational or a bignum
+            (else (push-apart/sides a b)))))
 
   (define (push-apart/sides a b)
     (let ((sides (##core#inline "ds_push_sides" a b box-keys)))
@@ -239,8 +239,8 @@
           (let ((axis (if (fx< sides 2) 'x 'y)))
             (push-by a b axis (overlap-on a b axis) (fx= 0 (fxand sides 1)))))))
 
-  ;; (push-apart/c a b keys): the two pushed bodies as a pair, or #f for
-  ;; a pair the C leaves.
+  ;; (push-apart/c a b keys): the two pushed bodies as a pair, #f for a
+  ;; pair the C leaves, -1 for one whose numbers only the Scheme takes.
   (define push-apart/c
     ((foreign-primitive scheme-object ()
        "C_word *a = C_alloc(2);"
@@ -453,8 +453,9 @@
                             (vector-set! v p dy)
                             (loop (fx+ p 1) (or any? dy))))))))
       ;; Without lifts going down, each collider's box as
-      ;; resolve-colliding-pair reads it, kept in C (contacts.c, ds_keep_box) and read again only
-      ;; when a visit gives the body a new version.
+      ;; resolve-colliding-pair reads it, kept in C (contacts.c,
+      ;; ds_keep_box) and read again only when a visit gives the body a
+      ;; new version.
       (define boxes (and (not drops) (fx>= n 2) (take-kept-boxes n)))
       ;; true when the pair moved. Without lifts going down, a pair whose
       ;; boxes (fixnums and flonums) do not overlap is left at once, by
@@ -512,9 +513,9 @@
   ;; and gives it back when done, so two passes never share one.
   (define spare-boxes #f)
   (define (take-kept-boxes n)
-    (let ((bytes (fx* 8 (fx+ 1 (fx* 5 n))))
+    (let ((bytes (* 8 (+ 1 (* 5 n))))        ; no fixnum limit assumed
           (b spare-boxes))
       (set! spare-boxes #f)
-      (if (and b (fx>= (blob-size b) bytes)) b (make-blob bytes))))
+      (if (and b (>= (blob-size b) bytes)) b (make-blob bytes))))
 
 )
