@@ -19,7 +19,10 @@
 
 #define DS_TILE_FIELDS 8
 #define DS_MAX_TILE_TEXTURES 64
-#define DS_BATCH_QUADS 1024
+/* The most quads a run sends at once: each run costs the driver a draw
+   call and gl-batch.c's first quad through SDL, so a crowd of a few
+   thousand sprites is one run; 16-bit indices reach 16,384 quads. */
+#define DS_BATCH_QUADS 4096
 
 static SDL_Texture *ds_tile_textures[DS_MAX_TILE_TEXTURES];
 static SDL_Vertex ds_batch_verts[DS_BATCH_QUADS * 4];
