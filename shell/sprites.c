@@ -41,13 +41,13 @@ static int ds_walk_status = 0;
    walk, and resetting a component that is full already is skipped. */
 static struct { SDL_Texture *t; SDL_Color c; } ds_walk_mod = { NULL, { 255, 255, 255, 255 } };
 
-static SDL_Color ds_walk_modulation(SDL_Texture *t) {
+static inline SDL_Color ds_walk_modulation(SDL_Texture *t) {
   if (ds_walk_mod.t != t) { ds_walk_mod.c = ds_texture_modulation(t); ds_walk_mod.t = t; }
   return ds_walk_mod.c;
 }
 
 /* A number this walk takes, as a double; 0 when it takes none. */
-static int ds_number(C_word v, double *out) {
+static inline int ds_number(C_word v, double *out) {
   if (v & C_FIXNUM_BIT) {
     C_word n = C_unfix(v);
     if (n < -DS_EXACT_LIMIT || n > DS_EXACT_LIMIT) return 0;
@@ -113,7 +113,7 @@ static double ds_sine(double degrees) {
 }
 
 /* The span [p, p + size) as render-copy! passes it on unchanged. */
-static int ds_near(double p, double size) {
+static inline int ds_near(double p, double size) {
   return p >= -DS_NEAR && p <= DS_NEAR && size > 0 && size <= DS_NEAR && p + size <= DS_NEAR;
 }
 

@@ -81,7 +81,7 @@ static int ds_batch_flush(SDL_Renderer *r, SDL_Texture *t, int n) {
    texture coordinates, as SDL's own flipped copy does: the quad's
    diagonal then runs as SDL's, and a stretched copy samples the same
    texels. */
-static void ds_batch_quad_to(int q, int tex_w, int tex_h, int sx, int sy, int sw, int sh,
+static inline void ds_batch_quad_to(int q, int tex_w, int tex_h, int sx, int sy, int sw, int sh,
                              int dx, int dy, int dw, int dh, int h, int v) {
   SDL_Vertex *p = &ds_batch_verts[q * 4];
   float x0 = (float)dx, y0 = (float)dy, x1 = (float)(dx + dw), y1 = (float)(dy + dh);
