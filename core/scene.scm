@@ -174,23 +174,37 @@
   ;; nothing, so a pipeline step a scene does not need costs one walk.
   ;; A loop, not a recursion: a scene of 10,000 entities would otherwise
   ;; hold 10,000 pending calls, which the garbage collector copies.
+  ;; The result is built front to back (append-changed!): `first` is a
+  ;; cell made at the first change, before the result's first cell, `last`
+  ;; the result's last cell, `run` the first element not copied yet.
   (define (map/shared f ls)
-    ;; results pile up in reverse; `changed` is the index of the last one
-    ;; that differs from its argument (-1: none does)
-    (let loop ((rest ls) (acc '()) (n 0) (changed -1))
+    (let loop ((rest ls) (first #f) (last #f) (run ls))
       (if (null? rest)
-          (shared-result ls acc n changed)
-          (let ((y (f (car rest))))
-            (loop (cdr rest) (cons y acc) (fx+ n 1) (if (eq? y (car rest)) changed n))))))
+          (shared-result ls first last run)
+          (let* ((x (car rest)) (y (f x)))
+            (if (eq? y x)
+                (loop (cdr rest) first last run)
+                (let ((first (or first (list #f))))
+                  (loop (cdr rest) first (append-changed! (or last first) run rest y) (cdr rest))))))))
 
-  ;; map/shared's list from its results in reverse, acc, of the n elements
-  ;; of ls, the last one changed at index `changed`.
-  (define (shared-result ls acc n changed)
-    (if (fx< changed 0)
-        ls
-        (let rebuild ((acc (list-tail acc (fx- (fx- n 1) changed)))
-                      (out (list-tail ls (fx+ changed 1))))
-          (if (null? acc) out (rebuild (cdr acc) (cons (car acc) out))))))
+  ;; After the cell `last`, copies of the elements from `run` up to `rest`
+  ;; (they came back unchanged), then y, the changed result at `rest`;
+  ;; answers the last cell. The cells are made here and held by no one
+  ;; else, so set-cdr! changes nothing anyone can see. (Built in reverse
+  ;; and turned round, the result took a second cell per entity, which
+  ;; every frame's minor collections copied: docs/performance.org, "The
+  ;; main thread against LÖVE's".)
+  (define (append-changed! last run rest y)
+    (let ((cell (cons (if (eq? run rest) y (car run)) '())))
+      (set-cdr! last cell)
+      (if (eq? run rest) cell (append-changed! cell (cdr run) rest y))))
+
+  ;; map/shared's list: ls itself when nothing changed, else the cells
+  ;; made, ending in the tail of ls from `run`, shared.
+  (define (shared-result ls first last run)
+    (if first
+        (begin (set-cdr! last run) (cdr first))
+        ls))
 
   ;; (proc scene entity) -> entity, for every entity; proc sees this scene,
   ;; i.e. every entity as it was before the map. When proc changes nothing
@@ -198,12 +212,19 @@
   ;; every frame of a game runs it over every entity, a call less each.
   (define (scene-map-entities s proc)
     (let ((es (scene-entities s)))
-      (let loop ((rest es) (acc '()) (n 0) (changed -1))
+      (let loop ((rest es) (first #f) (last #f) (run es))
         (if (null? rest)
-            (let ((out (shared-result es acc n changed)))
+            (let ((out (shared-result es first last run)))
               (if (eq? out es) s (with-entities s out)))
-            (let ((y (proc s (car rest))))
-              (loop (cdr rest) (cons y acc) (fx+ n 1) (if (eq? y (car rest)) changed n)))))))
+            (let* ((x (car rest)) (y (proc s x)))
+              (if (eq? y x)
+                  (loop (cdr rest) first last run)
+                  (let ((first (or first (list #f))))
+                    (if (eq? run rest)  ; the one before changed too: y's cell alone
+                        (let ((cell (cons y '())))
+                          (set-cdr! (or last first) cell)
+                          (loop (cdr rest) first cell (cdr rest)))
+                        (loop (cdr rest) first (append-changed! (or last first) run rest y) (cdr rest))))))))))
 
   ;; (proc entities) -> entities, over the whole list at once.
   (define (scene-transform-entities s proc)

@@ -37,7 +37,7 @@ static int ds_gl_send(SDL_Renderer *r, SDL_Texture *t, SDL_Vertex *v, const int 
 typedef void (APIENTRY *ds_gl_state_fn)(GLenum);
 typedef GLboolean (APIENTRY *ds_gl_is_enabled_fn)(GLenum);
 typedef void (APIENTRY *ds_gl_pointer_fn)(GLint, GLenum, GLsizei, const void *);
-typedef void (APIENTRY *ds_gl_draw_elements_fn)(GLenum, GLsizei, GLenum, const void *);
+typedef void (APIENTRY *ds_gl_draw_range_elements_fn)(GLenum, GLuint, GLuint, GLsizei, GLenum, const void *);
 typedef void (APIENTRY *ds_gl_get_integerv_fn)(GLenum, GLint *);
 
 static struct {
@@ -45,7 +45,7 @@ static struct {
   ds_gl_state_fn enable_client, disable_client;
   ds_gl_is_enabled_fn is_enabled;
   ds_gl_pointer_fn vertex_pointer, color_pointer, tex_coord_pointer;
-  ds_gl_draw_elements_fn draw_elements;
+  ds_gl_draw_range_elements_fn draw_range_elements;
   ds_gl_get_integerv_fn get_integerv;
 } ds_gl;
 
@@ -61,10 +61,10 @@ static int ds_gl_load(void) {
   ds_gl.vertex_pointer = (ds_gl_pointer_fn)SDL_GL_GetProcAddress("glVertexPointer");
   ds_gl.color_pointer = (ds_gl_pointer_fn)SDL_GL_GetProcAddress("glColorPointer");
   ds_gl.tex_coord_pointer = (ds_gl_pointer_fn)SDL_GL_GetProcAddress("glTexCoordPointer");
-  ds_gl.draw_elements = (ds_gl_draw_elements_fn)SDL_GL_GetProcAddress("glDrawElements");
+  ds_gl.draw_range_elements = (ds_gl_draw_range_elements_fn)SDL_GL_GetProcAddress("glDrawRangeElements");
   ds_gl.get_integerv = (ds_gl_get_integerv_fn)SDL_GL_GetProcAddress("glGetIntegerv");
   ds_gl.loaded = (ds_gl.enable_client && ds_gl.disable_client && ds_gl.is_enabled && ds_gl.vertex_pointer
-                  && ds_gl.color_pointer && ds_gl.tex_coord_pointer && ds_gl.draw_elements
+                  && ds_gl.color_pointer && ds_gl.tex_coord_pointer && ds_gl.draw_range_elements
                   && ds_gl.get_integerv) ? 1 : -1;
   /* the corners of quad q are vertices 4q .. 4q + 3, split as SDL's copy
      (tiles.c's ds_batch_indices) */
@@ -111,7 +111,10 @@ static int ds_gl_draw_rest(SDL_Renderer *r, SDL_Texture *t, SDL_Vertex *v, int n
   ds_gl.vertex_pointer(2, GL_FLOAT, sizeof(SDL_Vertex), &v[0].position);
   ds_gl.color_pointer(4, GL_UNSIGNED_BYTE, sizeof(SDL_Vertex), &v[0].color);
   ds_gl.tex_coord_pointer(2, GL_FLOAT, sizeof(SDL_Vertex), &v[0].tex_coord);
-  ds_gl.draw_elements(GL_TRIANGLES, (n - 1) * 6, GL_UNSIGNED_SHORT, ds_gl_indices + 6);
+  /* the range of the vertices used (those of quads 1 .. n - 1), so the
+     driver need not scan the indices for it */
+  ds_gl.draw_range_elements(GL_TRIANGLES, 4, (GLuint)(n * 4 - 1), (n - 1) * 6, GL_UNSIGNED_SHORT,
+                            ds_gl_indices + 6);
   if (!had_vertex) ds_gl.disable_client(GL_VERTEX_ARRAY);
   if (!had_color) ds_gl.disable_client(GL_COLOR_ARRAY);
   if (!had_tex) ds_gl.disable_client(GL_TEXTURE_COORD_ARRAY);

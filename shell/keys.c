@@ -16,7 +16,7 @@
    DS_MAX_DRAWN_KEYS), with the table of the same keys: shell/sprites.c
    reads every entity's keys with it. Answers the bits as above, or -1;
    out[i] is written only where bit i is set (the caller reads no other). */
-static C_word ds_read_keys_with(const ds_key_table *t, C_word alist, C_word keys, int n, C_word *out) {
+static inline C_word ds_read_keys_with(const ds_key_table *t, C_word alist, C_word keys, int n, C_word *out) {
   C_word ps, p, k;
   int i;
   C_word bits = 0, seen = 0;

@@ -340,7 +340,7 @@ static int ds_q_end(void) {
 
 /* 1 when the queue has room for a copy of src of t (a run of t open,
    src inside it); 0 when the copy is to go to SDL (the run so far sent). */
-static int ds_q_room(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst) {
+static inline int ds_q_room(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst) {
   if (r != ds_q_r || !src || !dst || dst->w <= 0 || dst->h <= 0) return 0;
   if (t != ds_q_t || ds_q_n == DS_BATCH_QUADS) {
     ds_q_flush();
@@ -355,13 +355,13 @@ static int ds_q_room(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const
   return 1;
 }
 
-static void ds_q_color(SDL_Color c) {
+static inline void ds_q_color(SDL_Color c) {
   SDL_Vertex *p = &ds_batch_verts[ds_q_n * 4];
   p[0].color = c; p[1].color = c; p[2].color = c; p[3].color = c;
 }
 
 /* 1 when the copy was queued, its vertices coloured c. */
-static int ds_q_copy_colored(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst,
+static inline int ds_q_copy_colored(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst,
                              int h, int v, SDL_Color c) {
   if (!ds_q_room(r, t, src, dst)) return 0;
   ds_batch_quad_to(ds_q_n, ds_q_tw, ds_q_th, src->x, src->y, src->w, src->h,

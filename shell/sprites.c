@@ -35,8 +35,19 @@ enum { DS_K_TILE_ID, DS_K_COLOR, DS_K_X, DS_K_Y, DS_K_FACING, DS_K_ANIMATIONS,
 
 static int ds_walk_status = 0;
 
+/* The texture's modulation as the walk last read or set it (t NULL: not
+   read yet in this walk). Only the walk's own calls change a texture's
+   modulation while it runs, so one read serves every sprite of the
+   walk, and resetting a component that is full already is skipped. */
+static struct { SDL_Texture *t; SDL_Color c; } ds_walk_mod = { NULL, { 255, 255, 255, 255 } };
+
+static inline SDL_Color ds_walk_modulation(SDL_Texture *t) {
+  if (ds_walk_mod.t != t) { ds_walk_mod.c = ds_texture_modulation(t); ds_walk_mod.t = t; }
+  return ds_walk_mod.c;
+}
+
 /* A number this walk takes, as a double; 0 when it takes none. */
-static int ds_number(C_word v, double *out) {
+static inline int ds_number(C_word v, double *out) {
   if (v & C_FIXNUM_BIT) {
     C_word n = C_unfix(v);
     if (n < -DS_EXACT_LIMIT || n > DS_EXACT_LIMIT) return 0;
@@ -102,7 +113,7 @@ static double ds_sine(double degrees) {
 }
 
 /* The span [p, p + size) as render-copy! passes it on unchanged. */
-static int ds_near(double p, double size) {
+static inline int ds_near(double p, double size) {
   return p >= -DS_NEAR && p <= DS_NEAR && size > 0 && size <= DS_NEAR && p + size <= DS_NEAR;
 }
 
@@ -113,20 +124,26 @@ static int ds_near(double p, double size) {
    ds_q_copy_turned); the rest go to SDL at once. */
 static int ds_sprite_copy(SDL_Renderer *r, SDL_Texture *t, const SDL_Rect *src, const SDL_Rect *dst,
                           double angle, int h, int v, int tinted, SDL_Color tint, int alpha) {
-  SDL_Color c = ds_texture_modulation(t);
+  SDL_Color m = ds_walk_modulation(t), c = m;
   int st = 0;
   if (tinted) { c.r = tint.r; c.g = tint.g; c.b = tint.b; }
   if (alpha < 255) c.a = (Uint8)alpha;
   if (!(angle == 0.0 ? ds_q_copy_colored(r, t, src, dst, h, v, c)
                      : ds_q_copy_turned(r, t, src, dst, angle, h, v, c))) {
     ds_q_flush();
+    ds_walk_mod.t = NULL;               /* read again after SDL's copy */
     if (tinted) st = SDL_SetTextureColorMod(t, c.r, c.g, c.b);
     if (st >= 0 && alpha < 255) st = SDL_SetTextureAlphaMod(t, c.a);
     if (st >= 0) st = ds_copy_rect(r, t, (SDL_Rect *)src, (SDL_Rect *)dst, angle,
                                    (h ? SDL_FLIP_HORIZONTAL : 0) | (v ? SDL_FLIP_VERTICAL : 0));
+    m.r = m.g = m.b = m.a = 0;          /* so both resets below are made */
   }
-  if (tinted) SDL_SetTextureColorMod(t, 255, 255, 255);
-  if (alpha < 255) SDL_SetTextureAlphaMod(t, 255);
+  if (tinted && (m.r != 255 || m.g != 255 || m.b != 255)) SDL_SetTextureColorMod(t, 255, 255, 255);
+  if (alpha < 255 && m.a != 255) SDL_SetTextureAlphaMod(t, 255);
+  if (ds_walk_mod.t == t) {             /* what the resets left */
+    if (tinted) ds_walk_mod.c.r = ds_walk_mod.c.g = ds_walk_mod.c.b = 255;
+    if (alpha < 255) ds_walk_mod.c.a = 255;
+  }
   return st;
 }
 
@@ -184,9 +201,14 @@ static int ds_sprite_one(SDL_Renderer *r, SDL_Texture *t, C_word mask, const C_w
       e[2] = px + kx * (sw - ox); e[3] = py + ky * (sh - oy);
     } else {
       double dx = kx * (sw / 2.0 - ox), dy = ky * (sh / 2.0 - oy);
-      double s = ds_sine(angle), c = ds_sine(angle + 90);
-      double mx = px + (dx * c - dy * s), my = py + dx * s + dy * c;
-      double hw = kx * sw / 2.0, hh = ky * sh / 2.0;
+      double mx = px, my = py, hw = kx * sw / 2.0, hh = ky * sh / 2.0;
+      /* turned about its centre (the default origin), the centre stays:
+         the terms below are zeros then (of either sign, which changes no
+         pixel: a box edge is mx -+ hw, and hw is 0 only for no box) */
+      if (dx != 0 || dy != 0) {
+        double s = ds_sine(angle), c = ds_sine(angle + 90);
+        mx = px + (dx * c - dy * s); my = py + dx * s + dy * c;
+      }
       e[0] = mx - hw; e[1] = my - hh; e[2] = mx + hw; e[3] = my + hh;
     }
     for (i = 0; i < 4; i++) if (!isfinite(e[i])) return DS_TO_SCHEME;
@@ -208,6 +230,7 @@ static C_word ds_sprite_walk(SDL_Renderer *r, SDL_Texture *t, C_word entities, C
   double cx, cy;
   ds_key_table table;
   ds_walk_status = 0;
+  ds_walk_mod.t = NULL;
   if (C_header_size(keys) != DS_K_COUNT || !ds_number(camera_x, &cx) || !ds_number(camera_y, &cy))
     return entities;
   ds_key_table_init(&table, keys, DS_K_COUNT);

@@ -19,7 +19,10 @@
 
 #define DS_TILE_FIELDS 8
 #define DS_MAX_TILE_TEXTURES 64
-#define DS_BATCH_QUADS 1024
+/* The most quads a run sends at once: each run costs the driver a draw
+   call and gl-batch.c's first quad through SDL, so a crowd of a few
+   thousand sprites is one run; 16-bit indices reach 16,384 quads. */
+#define DS_BATCH_QUADS 4096
 
 static SDL_Texture *ds_tile_textures[DS_MAX_TILE_TEXTURES];
 static SDL_Vertex ds_batch_verts[DS_BATCH_QUADS * 4];
@@ -78,7 +81,7 @@ static int ds_batch_flush(SDL_Renderer *r, SDL_Texture *t, int n) {
    texture coordinates, as SDL's own flipped copy does: the quad's
    diagonal then runs as SDL's, and a stretched copy samples the same
    texels. */
-static void ds_batch_quad_to(int q, int tex_w, int tex_h, int sx, int sy, int sw, int sh,
+static inline void ds_batch_quad_to(int q, int tex_w, int tex_h, int sx, int sy, int sw, int sh,
                              int dx, int dy, int dw, int dh, int h, int v) {
   SDL_Vertex *p = &ds_batch_verts[q * 4];
   float x0 = (float)dx, y0 = (float)dy, x1 = (float)(dx + dw), y1 = (float)(dy + dh);

@@ -84,6 +84,22 @@
     (test "the entities before it are the same objects" #t (and (eq? (car out) (car es)) (eq? (cadr out) (cadr es))))
     (test "the list after it is shared" #t (eq? (cdddr out) (cdddr es)))
     (test "nothing changed: the same scene" #t (eq? s (scene-map-entities s (lambda (sc e) e))))
+    ;; changes apart from each other: the unchanged ones between are copied
+    ;; into the new list, the original list keeps its own
+    (let* ((ids '(0 3 4))
+           (out2 (scene-entities
+                  (scene-map-entities s (lambda (sc e)
+                                          (if (memv (entity-ref e #:id) ids) (entity-set e #:x 'new) e))))))
+      (test "changes at 0, 3 and 4: each result in place" '(new 1 2 new new 5)
+            (map (lambda (e) (entity-ref e #:x)) out2))
+      (test "the unchanged ones between are the same objects" #t
+            (and (eq? (list-ref out2 1) (list-ref es 1)) (eq? (list-ref out2 2) (list-ref es 2))))
+      (test "the list after the last change is shared" #t (eq? (list-tail out2 5) (list-tail es 5)))
+      (test "the original list is untouched" '(0 1 2 3 4 5) (map (lambda (e) (entity-ref e #:x)) es))
+      (test "the last one changed: nothing shared, six long" '(0 1 2 3 4 last)
+            (map (lambda (e) (entity-ref e #:x))
+                 (scene-entities (scene-map-entities s (lambda (sc e)
+                                                         (if (= (entity-ref e #:id) 5) (entity-set e #:x 'last) e)))))))
     (test "a long list (100,000) maps without trouble" 100000
           (length (scene-entities (scene-map-entities
                                    (make-scene entities: (let loop ((i 0) (out '()))

@@ -94,7 +94,7 @@
         (test "the child exits cleanly" 0 status)
         (unless (zero? status) (for-each print lines))
         (test-assert "SDL's renderer is opengl" (and (member "renderer opengl" lines) #t))
-        (test "every case compared (25 map views, 11 crowds, the scaled renderer)" 37 (length cases))
+        (test "every case compared (25 map views, 12 crowds, the scaled renderer)" 38 (length cases))
         (for-each
          (lambda (c)
            (test (sprintf "~a: same pixels" (car c)) 0 (number c 1))
@@ -112,6 +112,9 @@
                        (> (or (quads "sprites: turned and mirrored, tinted, whole turns") 0) 250))
           (test-assert "a map: its runs of cells by OpenGL itself (a diagonal flip ends a run)"
                        (> (or (quads "batch-right-down at (0 0 0)") 0) 100))
+          ;; runs of 4,096, 4,096 and 808 quads, the first of each through SDL
+          (test "a crowd of 9,000: three runs, all but their first quads by OpenGL itself" 8997
+                (quads "sprites: a crowd longer than two runs (9,000)"))
           (test "a scaled renderer: none by OpenGL itself" 0 (quads "scaled renderer: sprites")))
         (delete-directory dir #t)))))
 

@@ -179,6 +179,31 @@
         "entity coin: #:tint is red, not (r g b)"
         (message-of (lambda () (sp-draw (list #:type 'coin #:x 0 #:y 0 #:tile-id 1 #:tint 'red))))))
 
+;; The C walk reads the texture's modulation once a walk and skips resets
+;; to what is full already (shell/sprites.c): with a modulation set before
+;; drawing, it must draw and leave the texture as the Scheme path does.
+(test-group "sprites: a texture modulated before the walk"
+  (define (draw-with fast?)
+    (texture-color-mod-set! quads-tex 200 150 100)
+    (texture-alpha-mod-set! quads-tex 100)
+    (let ((px (parameterize ((sprite-fast-path? fast?))
+                (sp-draw (list #:x 0 #:y 0 #:tile-id 2)
+                         (list #:x 8 #:y 0 #:tile-id 2 #:alpha 128)
+                         (list #:x 16 #:y 0 #:tile-id 2)
+                         (list #:x 0 #:y 8 #:tile-id 2 #:tint '(255 0 0))
+                         (list #:x 8 #:y 8 #:tile-id 2)))))
+      (let ((out (list (frame px) (call-with-values (lambda () (texture-color-mod quads-tex)) list)
+                       (texture-alpha-mod quads-tex))))
+        (texture-color-mod-set! quads-tex 255 255 255)
+        (texture-alpha-mod-set! quads-tex 255)
+        out)))
+  (let ((c (draw-with #t)) (scheme (draw-with #f)))
+    (test "the same pixels as the Scheme path" #t (equal? (car c) (car scheme)))
+    (test "the same modulation left on the texture" (cdr scheme) (cdr c))
+    (test "the first sprite drawn with the modulation set before" #t
+          (not (equal? ((sp-draw (list #:x 0 #:y 0 #:tile-id 2)) 2 2) (list-ref (car c) (+ 2 (* 2 32))))))
+    (test "after the alpha sprite the alpha is full again" 255 (caddr c))))
+
 (test-group "sprites: sheets"
   (test "#:tileset names a scene tileset: gid 1 of solids is cyan" sp-cyan
         ((sp-draw (list #:x 0 #:y 0 #:tile-id 1 #:tileset 'solids)) 3 3))

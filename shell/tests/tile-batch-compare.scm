@@ -201,7 +201,13 @@
            '(0 0))
      (list "through a camera at thirds (left to Scheme)" sheet-a sheet-b
            (crowd 100 (lambda (i) (if (even? i) '(#:scale 3/2 #:angle 30) '())))
-           '(1/3 2/3)))))
+           '(1/3 2/3))
+     ;; more quads than one run of the copy queue holds (tiles.c's
+     ;; DS_BATCH_QUADS, 4,096): three runs, in order
+     (list "a crowd longer than two runs (9,000)" sheet-a sheet-b
+           (crowd 9000 (lambda (i) (case (modulo i 5) ((0) '(#:alpha 160)) ((1) (list #:angle (* 3 i)))
+                                         ((2) '(#:tint (255 128 64))) (else '()))))
+           '(0 0)))))
 
 (define (tb-compare-sprites r dir)
   (let ((tex-a (img-load-texture! r (make-pathname dir "sheet-a.png")))

@@ -283,7 +283,7 @@
         (unless (zero? status) (for-each print lines))
         (test-assert "SDL's renderer is an accelerated one (not software)"
                      (and (member "renderer opengl" lines) #t))
-        (test "every case compared" 36 (length cases))
+        (test "every case compared" 37 (length cases))
         (for-each (lambda (c)
                     (test (sprintf "window, ~a: same pixels" (car c)) "0" (cadr c))
                     (when (or (substring-index "(0 0 0)" (car c)) (substring-index "sprites:" (car c)))
