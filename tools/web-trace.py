@@ -55,12 +55,51 @@ window.glCounts = {}; window.glFrames = 0;
 """
 
 
+def descendants(pid):
+    """pid and the processes under it (Linux /proc)."""
+    out = [pid]
+    try:
+        for tid in os.listdir("/proc/%d/task" % pid):
+            with open("/proc/%d/task/%s/children" % (pid, tid)) as f:
+                for child in f.read().split():
+                    out.extend(descendants(int(child)))
+    except OSError:
+        pass
+    return out
+
+
+def cpu_times(root):
+    """{(process kind, thread name): CPU seconds so far} of Chromium's
+    processes: the kind from the --type= of a process's command line
+    ("browser" without one), the thread's name from the kernel."""
+    tick, out = os.sysconf("SC_CLK_TCK"), {}
+    for pid in descendants(root):
+        try:
+            with open("/proc/%d/cmdline" % pid) as f:
+                args = f.read().replace("\0", " ").split()
+            kind = ([a[7:] for a in args if a.startswith("--type=")] or ["browser"])[0]
+            for tid in os.listdir("/proc/%d/task" % pid):
+                with open("/proc/%d/task/%s/stat" % (pid, tid)) as f:
+                    stat = f.read()
+                name = stat[stat.index("(") + 1:stat.rindex(")")]
+                fields = stat[stat.rindex(")") + 2:].split()
+                key = (kind, name.rstrip("0123456789") or name)
+                out[key] = out.get(key, 0) + (int(fields[11]) + int(fields[12])) / float(tick)
+        except (OSError, ValueError):
+            pass
+    return out
+
+
 class Browser(web_bench.Browser):
     def trace(self, seconds):
-        """The trace events of `seconds` seconds of the page."""
+        """The trace events of `seconds` seconds of the page; self.cpu:
+        the CPU seconds each kind of thread used meanwhile."""
         self.call("Tracing.start", session=False, transferMode="ReportEvents",
                   traceConfig={"includedCategories": CATEGORIES, "recordMode": "recordContinuously"})
+        before = cpu_times(self.proc.pid)
         time.sleep(seconds)
+        after = cpu_times(self.proc.pid)
+        self.cpu = {k: v - before.get(k, 0) for k, v in after.items()}
         self.events = []
         self.call("Tracing.end", session=False)
         events = []
@@ -148,6 +187,16 @@ def main():
             with open(os.environ["WEB_TRACE_SAVE"], "w") as f:
                 web_bench.web_test.json.dump({"traceEvents": events}, f)
         report(events, page, detail)
+        passes = sum(1 for e in events if e.get("name") == "FireAnimationFrame" and e.get("ph") == "X")
+        cpu = browser.cpu
+        print("%s: CPU time a pass (all threads, ms): %.2f in all; by process: %s" %
+              (page, 1000.0 * sum(cpu.values()) / max(1, passes),
+               ", ".join("%s %.2f" % (k, 1000.0 * v / max(1, passes)) for k, v in sorted(
+                   [(kind, sum(v for (k2, _), v in cpu.items() if k2 == kind))
+                    for kind in set(k for k, _ in cpu)], key=lambda kv: -kv[1]) if v > 0)))
+        for (kind, name), v in sorted(cpu.items(), key=lambda kv: -kv[1])[:8]:
+            if v > 0:
+                print("%s:   %.2f ms a pass  %s / %s" % (page, 1000.0 * v / max(1, passes), kind, name))
         if gl:
             browser.call("Page.addScriptToEvaluateOnNewDocument", session=True, source=COUNT_GL)
             browser.open(url)
