@@ -96,6 +96,16 @@
 
 static SDL_Event downstroke_event;
 
+/* SDL's renderers never use a depth buffer, but SDL asks for one by
+   default; in the browser a WebGL canvas with one has it cleared every
+   frame, for nothing (docs/performance.org, "Where the platformer's frame
+   goes"). So the browser build asks for none before it makes a renderer. */
+static void downstroke_no_depth_buffer(void) {
+#ifdef __EMSCRIPTEN__
+  SDL_GL_SetAttribute(SDL_GL_DEPTH_SIZE, 0);
+#endif
+}
+
 /* The one place the library reads SDL's event queue. */
 static int downstroke_poll(void) {
   if (SDL_PollEvent(&downstroke_event)) return (int)downstroke_event.type;
@@ -830,7 +840,8 @@ EOF
       (let* ((accel (bitwise-ior
                      (foreign-value "SDL_RENDERER_ACCELERATED" unsigned-int)
                      (if vsync? (foreign-value "SDL_RENDERER_PRESENTVSYNC" unsigned-int) 0)))
-             (p (sdl-create-renderer wp -1 accel))
+             (p (begin ((foreign-lambda void "downstroke_no_depth_buffer"))
+                       (sdl-create-renderer wp -1 accel)))
              (software? (not p))
              (p (or p (sdl-create-renderer
                        wp -1 (foreign-value "SDL_RENDERER_SOFTWARE" unsigned-int)))))

@@ -15,9 +15,15 @@
 ;;;   (text-size font string)          (values w h) in pixels of `string`.
 ;;;
 ;;; draw-text! renders with TTF_RenderUTF8_Blended (anti-aliased) into a
-;;; surface, makes a texture of it, copies it and frees both the texture and
-;;; the surface before it returns, so drawing text every frame holds on to
-;;; nothing. The empty string draws nothing. A newline starts a new line.
+;;; surface, makes a texture of it and copies it. The textures of the last
+;;; 16 texts drawn (each of at most 256 x 256 pixels) are kept, and the
+;;; same text drawn again (same renderer, font, string and colour) is
+;;; copied from its texture: a text drawn every frame is rendered once.
+;;; A larger text's texture is freed at once; closing a font frees its
+;;; texts' textures, and a renderer's end frees its own. So drawing text
+;;; every frame holds on to at most those 16 textures.
+;;; (text-textures-made) answers how many textures draw-text! has made.
+;;; The empty string draws nothing. A newline starts a new line.
 ;;;
 ;;; Layout, for both kinds of font (as LÖVE's love.graphics.printf lays
 ;;; out): (text-layout font string #!key width align scale) answers
@@ -54,7 +60,7 @@
 
 (module (downstroke text)
   (open-font close-font! font? font-alive?
-   draw-text! text-size text-layout font-line-skip
+   draw-text! text-size text-layout font-line-skip text-textures-made
    make-sprite-font sprite-font? sprite-font-texture sprite-font-glyph-width
    sprite-font-glyph-height sprite-font-first-char sprite-font-columns
    draw-sprite-text! sprite-text-size
@@ -69,29 +75,33 @@
 #include <SDL.h>
 #include <SDL_ttf.h>
 
-/* Render, make a texture, copy it to (x, y), free both. Answers 0, or -1
-   for a TTF failure, -2 for an SDL failure (the error in SDL_GetError).
-   The size drawn goes to *w and *h. */
-static int downstroke_draw_text(SDL_Renderer *r, TTF_Font *font, const char *s,
-                                int x, int y, int cr, int cg, int cb, int ca,
-                                int *w, int *h) {
+/* A text's texture: rendered, made a texture (blended when copied).
+   NULL with *status -1 for a TTF failure, -2 for an SDL failure (the
+   error in SDL_GetError). Its size goes to *w and *h. */
+static SDL_Texture *downstroke_text_texture(SDL_Renderer *r, TTF_Font *font, const char *s,
+                                            int cr, int cg, int cb, int ca,
+                                            int *w, int *h, int *status) {
   SDL_Color c;
   SDL_Surface *surf;
   SDL_Texture *tex;
-  SDL_Rect dst;
-  int status;
   c.r = (Uint8)cr; c.g = (Uint8)cg; c.b = (Uint8)cb; c.a = (Uint8)ca;
+  *status = 0;
   surf = TTF_RenderUTF8_Blended(font, s, c);
-  if (!surf) return -1;
+  if (!surf) { *status = -1; return NULL; }
   tex = SDL_CreateTextureFromSurface(r, surf);
-  if (!tex) { SDL_FreeSurface(surf); return -2; }
-  dst.x = x; dst.y = y; dst.w = surf->w; dst.h = surf->h;
   *w = surf->w; *h = surf->h;
-  SDL_SetTextureBlendMode(tex, SDL_BLENDMODE_BLEND);
-  status = SDL_RenderCopy(r, tex, NULL, &dst);
-  SDL_DestroyTexture(tex);
   SDL_FreeSurface(surf);
-  return status < 0 ? -2 : 0;
+  if (!tex) { *status = -2; return NULL; }
+  SDL_SetTextureBlendMode(tex, SDL_BLENDMODE_BLEND);
+  return tex;
+}
+
+/* The texture copied with its top-left corner at (x, y): 0, or -2 for an
+   SDL failure. */
+static int downstroke_text_copy(SDL_Renderer *r, SDL_Texture *tex, int x, int y, int w, int h) {
+  SDL_Rect dst;
+  dst.x = x; dst.y = y; dst.w = w; dst.h = h;
+  return SDL_RenderCopy(r, tex, NULL, &dst) < 0 ? -2 : 0;
 }
 EOF
 )
@@ -154,6 +164,7 @@ EOF
   (define (close-font! f)
     (let ((p (font-ptr f)))
       (when p
+        (forget-texts! (lambda (e) (eq? (text-font e) f)))
         (font-ptr-set! f #f)
         ((foreign-lambda void "TTF_CloseFont" c-pointer) p)))
     (void))
@@ -197,24 +208,115 @@ EOF
   ;; cannot reach any view, and SDL's C ints cannot hold where it is.
   (define far-text (expt 2 24))
 
-  (define c-draw-text
-    (foreign-lambda int "downstroke_draw_text" c-pointer c-pointer c-string
-                    int int int int int int (c-pointer int) (c-pointer int)))
+;;; ------------------------------------------------------------------
+  ;;; The textures of the texts drawn last. A game draws the same texts
+  ;;; frame after frame (a score, a title), and rendering one, making its
+  ;;; texture and freeing it each time is most of what drawing it costs:
+  ;;; in the browser each is a texture made, uploaded and deleted in WebGL
+  ;;; (docs/performance.org, "Where the platformer's frame goes"). So the
+  ;;; last `text-cache-entries` texts drawn, each of at most
+  ;;; `text-cache-pixels`, keep their textures, and the same text (same
+  ;;; renderer, font, string and colour) is copied from it again. A larger
+  ;;; text is made and freed as before. An entry whose renderer has ended
+  ;;; is dropped (SDL freed its texture with the renderer); closing a font
+  ;;; frees its entries' textures.
+
+  (define text-cache-entries 16)
+  (define text-cache-pixels (* 256 256))
+
+  (define-record-type text-entry
+    (make-text-entry renderer font string color texture w h)
+    text-entry?
+    (renderer text-renderer)
+    (font text-font)
+    (string text-string-drawn)
+    (color text-color)
+    (texture text-texture)
+    (w text-w)
+    (h text-h))
+
+  ;; Most recently drawn first.
+  (define text-cache '())
+  ;; Textures made by draw-text! since the start (text-textures-made).
+  (define textures-made 0)
+  (define (text-textures-made) textures-made)
+
+  (define destroy-c-texture! (foreign-lambda void "SDL_DestroyTexture" c-pointer))
+
+  ;; Frees the entry's texture, unless its renderer has freed it already.
+  (define (free-entry! e)
+    (when (renderer-alive? (text-renderer e))
+      (destroy-c-texture! (text-texture e))))
+
+  ;; Drops (and frees) the entries `drop?` answers true for.
+  (define (forget-texts! drop?)
+    (set! text-cache
+      (let keep ((es text-cache))
+        (cond ((null? es) '())
+              ((drop? (car es)) (free-entry! (car es)) (keep (cdr es)))
+              (else (cons (car es) (keep (cdr es))))))))
+
+  (define (cached-text renderer font string c)
+    (let find ((es text-cache))
+      (cond ((null? es) #f)
+            ((let ((e (car es)))
+               (and (eq? (text-renderer e) renderer) (eq? (text-font e) font)
+                    (equal? (text-color e) c) (string=? (text-string-drawn e) string)))
+             (car es))
+            (else (find (cdr es))))))
+
+  ;; The entry first, the ended renderers' entries gone, at most
+  ;; text-cache-entries kept.
+  (define (remember-text! e)
+    (let keep ((es (cons e (remove-entry e text-cache))) (n 0) (out '()))
+      (cond ((null? es) (set! text-cache (reverse out)))
+            ((not (renderer-alive? (text-renderer (car es)))) (keep (cdr es) n out))
+            ((>= n text-cache-entries) (free-entry! (car es)) (keep (cdr es) n out))
+            (else (keep (cdr es) (+ n 1) (cons (car es) out))))))
+
+  (define (remove-entry e es)
+    (cond ((null? es) '())
+          ((eq? (car es) e) (cdr es))
+          (else (cons (car es) (remove-entry e (cdr es))))))
+
+  (define c-text-texture
+    (foreign-lambda c-pointer "downstroke_text_texture" c-pointer c-pointer c-string
+                    int int int int (c-pointer int) (c-pointer int) (c-pointer int)))
+  (define c-text-copy
+    (foreign-lambda int "downstroke_text_copy" c-pointer c-pointer int int int int))
+
+  (define (copy-text! who rp tex x y w h)
+    (when (< (c-text-copy rp tex x y w h) 0)
+      (text-error who (sprintf "SDL: ~a" (get-error)))))
 
   ;; One line of TrueType text at whole pixels (x, y): (values w h) drawn.
-  (define (draw-line! who rp fp font c string x y)
+  (define (draw-line! who renderer rp fp font c string x y)
     (cond
      ((zero? (string-length string)) (values 0 0))
      ((or (> (abs x) far-text) (> (abs y) far-text)) (text-size font string))
+     ((cached-text renderer font string c)
+      => (lambda (e)
+           (unless (eq? e (car text-cache)) (remember-text! e))
+           (copy-text! who rp (text-texture e) x y (text-w e) (text-h e))
+           (values (text-w e) (text-h e))))
      (else
-      (let-location ((w int 0) (h int 0))
-        (let ((status (c-draw-text rp fp string x y
-                                   (car c) (cadr c) (caddr c) (cadddr c)
-                                   (location w) (location h))))
+      (let-location ((w int 0) (h int 0) (status int 0))
+        (let ((tex (c-text-texture rp fp string (car c) (cadr c) (caddr c) (cadddr c)
+                                   (location w) (location h) (location status))))
           (case status
             ((-1) (text-error who (sprintf "TTF_RenderUTF8_Blended: ~a" (ttf-get-error))))
-            ((-2) (text-error who (sprintf "SDL: ~a" (get-error))))
-            (else (values w h))))))))
+            ((-2) (text-error who (sprintf "SDL: ~a" (get-error)))))
+          (set! textures-made (+ textures-made 1))
+          (if (<= (* w h) text-cache-pixels)
+              (begin
+                ;; copies of the string and colour: the caller may change its own
+                (remember-text! (make-text-entry renderer font (string-copy string) (append c '())
+                                                 tex w h))
+                (copy-text! who rp tex x y w h))
+              (let ((status (c-text-copy rp tex x y w h)))
+                (destroy-c-texture! tex)
+                (when (< status 0) (text-error who (sprintf "SDL: ~a" (get-error))))))
+          (values w h))))))
 
   (define/keywords (draw-text! renderer font string x y #!key (color '(255 255 255))
                                (width #f) (align 'left))
@@ -227,10 +329,10 @@ EOF
       (check-layout-options 'draw-text! width align)
       (if (and (not width) (eq? align 'left) (not (has-newline? string)))
           ;; one line, as SDL_ttf draws it: no layout to compute
-          (draw-line! 'draw-text! rp fp font c string x y)
+          (draw-line! 'draw-text! renderer rp fp font c string x y)
           (receive (lines w h) (layout 'draw-text! font string width align 1)
             (for-each (lambda (l)
-                        (draw-line! 'draw-text! rp fp font c (car l) (+ x (cadr l)) (+ y (caddr l))))
+                        (draw-line! 'draw-text! renderer rp fp font c (car l) (+ x (cadr l)) (+ y (caddr l))))
                       lines)
             (values w h)))))
 

@@ -13,8 +13,10 @@ its last frame; that PNG, read out of the page's file system, must match
 the native one (same size, every channel of at most MAX_OFF of the pixels
 off by more than MAX_DIFF: the simulation is exact, only the drawing of a
 different renderer may differ). The platformer's page must have opened
-its sound (a running Web Audio context), and a key sent to it (Escape,
-the quit action) must end its run. Then the save page is loaded
+its sound (a running Web Audio context), its title must make no WebGL
+texture while it shows (the texts drawn every frame keep theirs), its
+canvas must have no depth buffer, and a key sent to it (Escape, the quit
+action) must end its run. Then the save page is loaded
 twice in one browser profile: the second load must read what the first
 saved.
 
@@ -167,6 +169,16 @@ class Browser:
             self.proc.kill()
 
 
+# Counts the WebGL textures a page makes (window.texturesMade).
+COUNT_TEXTURES = """
+window.texturesMade = 0;
+(function (make) {
+  WebGLRenderingContext.prototype.createTexture = function () {
+    window.texturesMade++; return make.apply(this, arguments); };
+})(WebGLRenderingContext.prototype.createTexture);
+"""
+
+
 class Quiet(http.server.SimpleHTTPRequestHandler):
     extensions_map = dict(http.server.SimpleHTTPRequestHandler.extensions_map,
                           **{".wasm": "application/wasm", ".js": "text/javascript"})
@@ -221,10 +233,25 @@ def main():
 
         # a key sent to the page reaches the game: Escape (the quit action)
         # ends the platformer's run, and with it the browser's main loop
+        browser.call("Page.addScriptToEvaluateOnNewDocument", session=True, source=COUNT_TEXTURES)
         browser.open("%s/platformer/index.html" % base)
         frames = "(typeof Browser !== 'undefined' && Browser.mainLoop.currentFrameNumber) || 0"
-        browser.wait(frames + " >= 10", 60)
+        # (its first frames make the level's and the texts' textures; the
+        # counter exists in the new page only, not in the one before it,
+        # and the loop's pass count may start again as the game starts)
+        browser.wait("typeof window.texturesMade === 'number' && " + frames + " >= 10", 60)
+        time.sleep(1)
+        browser.wait(frames + " >= 30", 60)
+        t0 = browser.js("window.texturesMade")
         n0 = browser.js(frames); time.sleep(1); n1 = browser.js(frames)
+        # its title draws the same four texts every frame: their textures
+        # are kept (shell/text.scm), so none is made while it shows; and
+        # the canvas has no depth buffer (shell/sdl2.scm)
+        t1 = browser.js("window.texturesMade")
+        check(t1 == t0, "the platformer's title makes no texture per frame",
+              "%s textures made in %s main loop passes" % (None if t0 is None else t1 - t0, n1 - n0))
+        depth = browser.js("GL.currentContext.GLctx.getContextAttributes().depth")
+        check(depth is False, "the page's WebGL canvas has no depth buffer", "depth: %s" % depth)
         # its sound: SDL's Web Audio context, opened by init-audio! (this
         # Chromium lets a page play without a click)
         audio = browser.js("Module.SDL2 && Module.SDL2.audioContext ? "

@@ -122,6 +122,78 @@
                      (< growth 2048))))
     (close-font! font)))
 
+;;; The textures of texts drawn again are kept (text.scm, "The textures
+;;; of the texts drawn last"): what is drawn stays the same.
+(define (tx-frame)
+  (let ((px (tx-pixels)))
+    (let loop ((y 0) (out '()))
+      (if (= y tx-h) out
+          (loop (+ y 1) (let row ((x 0) (out out))
+                          (if (= x tx-w) out (row (+ x 1) (cons (px x y) out)))))))))
+
+(test-group "text: kept textures"
+  (let ((font (open-font tx-font-path 16))
+        (made (lambda () (text-textures-made))))
+    (tx-clear!)
+    (let ((n0 (made)))
+      (draw-text! tx-renderer font "Score 10" 3 4 color: '(0 255 0))
+      (let ((first (tx-frame)))
+        (do ((i 0 (+ i 1))) ((= i 10))
+          (tx-clear!)
+          (draw-text! tx-renderer font "Score 10" 3 4 color: '(0 255 0)))
+        (test "the same text drawn 11 times makes one texture" 1 (- (made) n0))
+        (test-assert "and draws the same pixels each time" (equal? first (tx-frame)))))
+    (let ((n0 (made)))
+      (tx-clear!)
+      (draw-text! tx-renderer font "Score 10" 3 4 color: '(255 0 0))
+      (test "another colour makes another texture" 1 (- (made) n0))
+      (receive (in out) (tx-count (tx-pixels) (lambda (p) (equal? p '(0 255 0 255))) 0 0 tx-w tx-h)
+        (test "drawn in that colour, none of the first" 0 in)))
+    (let* ((s (string-copy "AB")) (n0 (made)))
+      (tx-clear!)
+      (draw-text! tx-renderer font s 0 0)
+      (let ((ab (tx-frame)))
+        (string-set! s 0 #\X)
+        (tx-clear!)
+        (draw-text! tx-renderer font s 0 0)
+        (test "a string changed after it was drawn is drawn anew" 2 (- (made) n0))
+        (test-assert "with its new text" (not (equal? ab (tx-frame))))))
+    (let ((big (open-font tx-font-path 200)) (n0 (made)))
+      (draw-text! tx-renderer big "WWWW" 0 0)
+      (draw-text! tx-renderer big "WWWW" 0 0)
+      (test "a text above 256 x 256 pixels is made each time it is drawn" 2 (- (made) n0))
+      (close-font! big))
+    ;; a renderer that ended took its textures with it: another one,
+    ;; perhaps at the same address, makes its own
+    (define (frame-of r)
+      (let ((px (renderer-pixels r)))
+        (let loop ((y 0) (out '()))
+          (if (= y tx-h) out
+              (loop (+ y 1) (let row ((x 0) (out out))
+                              (if (= x tx-w) out (row (+ x 1) (cons (px x y) out)))))))))
+    (define (fresh-renderer)
+      (let ((r (create-software-renderer! (create-rgba-surface! tx-w tx-h))))
+        (render-draw-blend-mode-set! r 'none)
+        (render-draw-color-set! r 0 0 0)
+        (render-clear! r)
+        r))
+    (let ((r2 (fresh-renderer)) (n0 (made)))
+      (draw-text! r2 font "Hi" 10 5 color: '(255 0 0))
+      (let ((before (frame-of r2)))
+        (destroy-renderer! r2)
+        (let ((r3 (fresh-renderer)))
+          (draw-text! r3 font "Hi" 10 5 color: '(255 0 0))
+          (test "a renderer made after one ended makes its own texture" 2 (- (made) n0))
+          (test-assert "and draws the same pixels" (equal? before (frame-of r3)))
+          (destroy-renderer! r3))))
+    ;; a closed font's texts go with it; a font opened afterwards draws
+    (close-font! font)
+    (let ((font2 (open-font tx-font-path 16)) (n0 (made)))
+      (tx-clear!)
+      (draw-text! tx-renderer font2 "Hi" 10 5 color: '(255 0 0))
+      (test "a font opened after one closed makes its own texture" 1 (- (made) n0))
+      (close-font! font2))))
+
 ;;; Sprite font: 4x4 glyphs, 4 columns, first char #\A, 2 rows (A..H), each
 ;;; cell one colour; the cell of H is left transparent.
 (define tx-glyph-colors
