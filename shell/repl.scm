@@ -41,7 +41,8 @@
   (define (positive-limit name)
     (lambda (v) (check-limit (sprintf "~a:" name) v)))
 
-  ;; Connections open at once (the terminal aside); one more is closed at once.
+  ;; Connections open at once (the terminal aside); one more is closed at
+  ;; once, unless one of them has not sent the secret (make-room!).
   (define repl-max-clients (make-parameter 8 (positive-limit 'repl-max-clients)))
   ;; Bytes of one expression still being received. CHICKEN's reader takes
   ;; about 0.4 s per MiB of list text, so this also bounds the frame that
@@ -357,7 +358,8 @@
       (when (< k 64)
         (let ((fd (c-accept (repl-listener r) (repl-spare r))))
           (cond ((>= fd 0)
-                 (if (>= (socket-count r) (repl-max-clients-of r))
+                 (if (and (>= (socket-count r) (repl-max-clients-of r))
+                          (not (make-room! r)))
                      (begin (c-close fd)
                             (tell-owner! r (sprintf "refused a connection: ~a are open (repl-max-clients)"
                                                     (repl-max-clients-of r))))
@@ -368,6 +370,33 @@
                 ((= fd repl-again) (void))
                 ((= fd repl-dropped) (tell-owner! r (last-failure)) (loop (+ k 1)))
                 (else (tell-owner! r (last-failure))))))))
+
+  ;; With every connection taken, the oldest one that has still not sent
+  ;; the secret gives its place to the new one, so connections that never
+  ;; prove themselves (anyone on the machine can open them) cannot keep the
+  ;; owner out. Each is first given its chance: a secret already received
+  ;; opens it, and it stays. #t when a place was freed.
+  (define (make-room! r)
+    (let ((now (current-process-milliseconds)))
+      (let loop ((cs (repl-clients r)))
+        (cond ((null? cs) #f)
+              ((and (client-fd (car cs)) (eq? (client-state (car cs)) 'proving))
+               (let ((c (car cs)))
+                 (prove! r c now)
+                 (if (eq? (client-state c) 'open)
+                     (loop (cdr cs))
+                     (begin
+                       (c-close (client-fd c))
+                       (tell-owner! r (or (client-drop c)
+                                          "dropped a connection that had not sent the secret, to make room for a new one (repl-max-clients)"))
+                       (repl-clients-set! r (remove-client (repl-clients r) c))
+                       #t))))
+              (else (loop (cdr cs)))))))
+
+  (define (remove-client cs c)
+    (cond ((null? cs) '())
+          ((eq? (car cs) c) (cdr cs))
+          (else (cons (car cs) (remove-client (cdr cs) c)))))
 
   ;; #t to keep the client.
   (define (serve! r c now)

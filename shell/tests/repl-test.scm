@@ -254,6 +254,44 @@
     (test "the others are served" '("1\n> " "2\n> ") (list (rt-ask r a "1\n") (rt-ask r b "2\n")))
     (for-each rc-close (list a b c))
     (repl-close! r))
+  ;; silent connections (anyone on the machine can open them) hold every
+  ;; place: each new connection takes the place of the oldest of them
+  (let* ((r (parameterize ((repl-max-clients 2)) (make-repl port: 0 secret-directory: rt-secrets)))
+         (silent-a (rc-connect (repl-port r)))
+         (silent-b (rc-connect (repl-port r))))
+    (test-assert "two silent connections are taken, and told nothing" (rt-quiet? r silent-a 20))
+    (let ((owner (rt-owner r)))
+      (test-assert "the owner still gets in" owner)
+      (test "and is served" "3\n> " (and owner (rt-ask r owner "(+ 1 2)\n")))
+      (test "the older silent connection was closed for it" "<closed>" (rt-answer r silent-a 50))
+      (test-assert "the younger one is still open" (rt-quiet? r silent-b 20))
+      (let ((next (rt-owner r)))
+        (test "the next owner takes the younger one's place, and is served" "4\n> "
+              (and next (rt-ask r next "(+ 2 2)\n")))
+        (test "which is closed" "<closed>" (rt-answer r silent-b 50))
+        (let ((c (rc-connect (repl-port r))))
+          (rc-send c (string-append (rt-secret r) "\n" rt-hit))
+          (test "with every place held by owners, one more is closed at once, even with the secret"
+                "<closed>" (rt-answer r c))
+          (rc-close c))
+        (when next (rc-close next)))
+      (when owner (rc-close owner)))
+    (for-each rc-close (list silent-a silent-b))
+    (repl-close! r))
+  ;; a connection whose secret has arrived, not yet read, is not silent
+  (let* ((r (parameterize ((repl-max-clients 1)) (make-repl port: 0 secret-directory: rt-secrets)))
+         (hits rt-hits)
+         (first (rc-connect (repl-port r))))
+    (rc-send first (string-append (rt-secret r) "\n"))
+    (let ((second (rc-connect (repl-port r))))
+      (rc-send second (string-append (rt-secret r) "\n" rt-hit))
+      (test "both wait to be accepted; the first, its secret read when the second needs its place, keeps it"
+            "<closed>" (rt-answer r second))
+      (test-assert "and is served"
+                   (substring-index "evaluated between frames" (rt-answer r first)))
+      (test "the second's expression was not evaluated" hits rt-hits)
+      (for-each rc-close (list first second)))
+    (repl-close! r))
   (let* ((r (make-repl port: 0 secret-directory: rt-secrets max-input: 1000))
          (fd (rt-owner r)))
     (rc-send fd (string-append "(list \"" (make-string 3000 #\a)))
@@ -288,6 +326,7 @@
     (for-each (lambda (line) (test-assert line (substring-index line log)))
               '("refused a connection: its first line was not the secret"
                 "refused a connection: 2 are open (repl-max-clients)"
+                "dropped a connection that had not sent the secret, to make room for a new one (repl-max-clients)"
                 "dropped a client: it sent an expression longer than 1000 bytes (repl-max-input)"
                 "dropped a client: more than 100000 bytes of output were waiting for it (repl-max-output)"
                 "dropped a client: it read none of its output for 200 ms (repl-timeout)")))))
