@@ -233,10 +233,27 @@
       (let-values (((entity sx) (if swept
                                     (leave-solids entity tm sx (num entity #:y) mx 0 #:x cut top-cut)
                                     (values entity sx))))
-        (if head?
-            (stop-head-x entity tm swept sx cut top-cut)
-            (resolve-tiles entity swept sx #:x #:width #:vx #:y #:height
-                           (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm) cut #f)))))
+        (let ((stopped (if head?
+                           (stop-head-x entity tm swept sx cut top-cut)
+                           (resolve-tiles entity swept sx #:x #:width #:vx #:y #:height
+                                          (tilemap-tile-width tm) (tilemap-tile-height tm) (column-grid tm) cut #f))))
+          (if (slope-map? tm)     ; any slope cells, floor or ceiling
+              (note-x-start stopped (and (or (not (eqv? cut 0)) head?)
+                                         (not (and (eqv? (num stopped #:x) (num entity #:x))
+                                                   (eqv? (num stopped #:vx) (num entity #:vx))))
+                                         sx))
+              stopped)))))
+
+  ;; A body near a slope that the x pass stopped (at a wall, or its head
+  ;; at a ceiling slope) has moved less on x than its #:vx, which the stop
+  ;; changed: the y pass, whose rules depend on that motion, reads it from
+  ;; where the frame's x motion started, noted here as #:x-pass-start (x
+  ;; - vx, or where the escape put it) and removed by the y pass. A note
+  ;; left from an earlier frame (a body that skipped the y pass) goes.
+  (define (note-x-start entity start)
+    (cond (start (entity-set entity #:x-pass-start start))
+          ((assq #:x-pass-start entity) (entity-remove entity #:x-pass-start))
+          (else entity)))
 
   ;; The x pass near a ceiling slope: the box without its lowest `cut`
   ;; and its top `top-cut` px meets solid tiles; the head, x + w/2 at
@@ -265,10 +282,14 @@
   ;; y - vy).
   (define (stop-at-tiles-y scene entity #!optional (climbers? #t))
     (let* ((tm (scene-tilemap scene))
+           (x-start (and (slope-map? tm) (assq #:x-pass-start entity)))
+           (entity (if x-start (entity-remove entity #:x-pass-start) entity))
            (swept (swept? scene entity))
            (my (velocity-moved entity #:vy 'velocity-y))
            (sy (- (num entity #:y) my))
-           (mx (velocity-moved entity #:vx 'velocity-x))
+           ;; how far the body moved on x this frame: its #:vx, unless the
+           ;; x pass stopped it (note-x-start)
+           (mx (if x-start (- (num entity #:x) (cdr x-start)) (velocity-moved entity #:vx 'velocity-x)))
            (cut (slope-cut-of tm entity mx my))
            (head? (ceiling-cut-of tm entity mx my cut))
            (top-cut (or head? 0)))
@@ -279,7 +300,7 @@
         (if (and (eqv? cut 0) (not head?))
             (resolve-tiles entity swept sy #:y #:height #:vy #:x #:width
                            (tilemap-tile-height tm) (tilemap-tile-width tm) (row-grid tm) 0 climbers?)
-            (land-near-slope entity tm swept sy mx cut climbers? head? top-cut)))))
+            (land-near-slope entity tm swept sy mx cut climbers? head? top-cut (and x-start #t))))))
 
   ;; The y pass near a slope (docs/physics.org, "Slopes"). The box without
   ;; its lowest `cut` px (slope-cut-of) meets solid and one-way tiles as any box does (a
@@ -295,7 +316,9 @@
   ;; swept from where the frame's y motion started, sy, up to y: the
   ;; first ceiling in that span stops it there (head-ceiling). Of the
   ;; box's stop and the head's, the lower one holds.
-  (define (land-near-slope entity tm swept sy mx cut climbers? #!optional head? (top-cut 0))
+  ;; stopped-on-x?: the x pass stopped the body this frame, and set its
+  ;; #:vx.
+  (define (land-near-slope entity tm swept sy mx cut climbers? #!optional head? (top-cut 0) stopped-on-x?)
     (let* ((v (num entity #:vy))
            (h (num entity #:height))
            (box (and (not (zero? v))
@@ -315,18 +338,48 @@
            (stop (cond ((and box foot) (min box foot))
                        ((and box head) (max box head))
                        (else (or box foot head)))))
-      (cond ((and head? stop (> v 0) (< stop (num entity #:y)) (not (zero? mx))
-                  (let ((ceiling (head-ceiling tm (+ (num entity #:x) (/ (num entity #:width) 2))
-                                               stop (num entity #:y))))
-                    (and ceiling (> ceiling stop))))
+      (cond ((and stop (> v 0) (< stop (num entity #:y)) (not (zero? mx))
+                  (or (let ((ceiling (head-ceiling tm (+ (num entity #:x) (/ (num entity #:width) 2))
+                                                   stop (num entity #:y))))
+                        (and ceiling (> ceiling stop)))
+                      (let-values (((bottom-cut top-cut) (cuts-at-rest tm (entity-set entity #:y stop))))
+                        (solid-across? tm (num entity #:x) (num entity #:width)
+                                       (+ stop top-cut) (- (+ stop h) bottom-cut)))))
              ;; lifted by the floor into a ceiling above its head: the body
              ;; does not fit there, and goes back to where this frame's x
-             ;; motion started, stopped on x as by a wall
+             ;; motion started, stopped on x as by a wall (by the x pass's
+             ;; stop, when it made one)
              (land-near-slope (entity-set* entity #:x (- (num entity #:x) mx)
-                                           #:vx (rebound entity (num entity #:vx)))
-                              tm swept sy 0 cut climbers? head? top-cut))
+                                           #:vx (if stopped-on-x? (num entity #:vx) (rebound entity (num entity #:vx))))
+                              tm swept sy 0 cut climbers? head? top-cut stopped-on-x?))
             (stop (entity-set* entity #:y stop #:vy (rebound entity v)))
             (else entity))))
+
+  ;; Whether a solid cell lies in the band [top, bottom) of the columns a
+  ;; box of width w at x covers.
+
+  (define (solid-across? tm x w top bottom)
+    (let ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm))
+          (col0 (tilemap-origin-col tm)) (row0 (tilemap-origin-row tm)))
+      ;; only the map's cells: a body far outside it (any number) costs
+      ;; no more than one inside
+      (let ((c0 (max col0 (span-first x tw)))
+            (c1 (min (+ col0 (tilemap-width tm) -1) (span-last x w tw)))
+            (r0 (max row0 (span-first top th)))
+            (r1 (min (+ row0 (tilemap-height tm) -1) (span-last top (- bottom top) th))))
+        (let cols ((c c0))
+          (and (<= c c1)
+               (or (let rows ((r r0))
+                     (and (<= r r1) (or (tilemap-solid? tm c r) (rows (+ r 1)))))
+                   (cols (+ c 1))))))))
+
+  ;; What a body's box leaves out at its bottom and top where it is, with
+  ;; no motion: near a slope its lower corners, near a ceiling slope its
+  ;; upper ones, may be in the cells beside the foot and the head, as the
+  ;; tile passes let them be (the cuts contacts use too).
+  (define (cuts-at-rest tm entity)
+    (let ((cut (slope-cut-of tm entity 0 0)))
+      (values cut (or (ceiling-cut-of tm entity 0 0 cut) 0))))
 
   (define-pipeline (resolve-tile-collisions-x tile-collisions-x) (scene entity dt)
     guard: (scene-tilemap scene)

@@ -210,6 +210,63 @@
                                fs)))))
       '(1 2 3) '(52 52 50)))))
 
+;; The same tunnel at every walking speed the slope rules guarantee (w/2
+;; + |vx| + 1 <= h - 1), for bodies 4 to 16 px wide: it fits while its
+;; head is at most at x 60, and each walk stops at the last of its steps
+;; there, 20 + vx * floor((40 - w/2) / vx). On the way the x pass may stop
+;; the head at the ceiling's line; the foot is still raised by how far the
+;; body moved on x, so it is never left in the floor.
+(test-group "a tunnel narrowing from both sides, at every guaranteed walking speed"
+  (define (ceiling-at hx) (cond ((< hx 48) 16) ((< hx 64) (+ 16 (- hx 48))) (else 32)))
+  (define (floor-at fx) (cond ((< fx 48) 64) ((< fx 64) (- 64 (- fx 48))) (else 48)))
+  (cs-each
+   (lambda (mode pipeline name)
+     (for-each
+      (lambda (w)
+        (let walks ((vx 1) (got '()) (want '()))
+          (if (> (+ (/ w 2) vx 1) 23)
+              (test (sprintf "~a px wide (~a, ~a): ends at its last step that fits, head and foot right every frame"
+                             w name mode)
+                    (reverse want) (reverse got))
+              (let ((fs (cs-run pipeline mode cs-tunnel (cs-body 20 40 w 24 #:vx vx #:gravity? #t) 50 #:vx vx)))
+                (walks (+ vx 1)
+                       (cons (list vx (car (cs-last fs))
+                                   (cs-all? (lambda (f) (let ((hx (+ (car f) (/ w 2))))
+                                                          (and (>= (cadr f) (ceiling-at hx))
+                                                               (= (+ (cadr f) 24) (floor-at hx)))))
+                                            fs))
+                             got)
+                       (cons (list vx (+ 20 (* vx (quotient (- 40 (/ w 2)) vx))) #t) want))))))
+      '(4 8 12 16)))))
+
+;; The tunnel with a wall (column 4, row 2) where it gets too low: a body
+;; 4 px wide at 4 px/frame from x 21 reaches x 61 in the frame the wall
+;; stops it at 60, and there the floor would lift its head into the
+;; ceiling: it goes back to where the frame's motion started, x 57, and
+;; keeps the #:vx the wall gave it (its #:bounce once, not twice).
+(define cs-tunnel-wall
+  (list->tilemap '((1 1 1 1 1 1 1) (0 0 0 5 1 1 1) (0 0 0 0 1 1 1) (0 0 0 3 1 1 1) (1 1 1 1 1 1 1))
+                 ceiling-slopes: '((5 0 16)) slopes: '((3 0 16))))
+
+(test-group "a wall where the tunnel gets too low"
+  (cs-each
+   (lambda (mode pipeline name)
+     (for-each
+      (lambda (bounce vx-after)
+        (let* ((more (if bounce (list #:bounce bounce) '()))
+               (s (let loop ((s (make-scene tilemap: cs-tunnel-wall collision-mode: mode
+                                            entities: (list (apply cs-body 21 40 4 24 #:vx 4 #:gravity? #t more))))
+                             (k 0))
+                    (if (= k 9) s
+                        (loop (scene-map-entities (pipeline s 16) (lambda (s e) (entity-set e #:vx 4))) (+ k 1)))))
+               (e (car (scene-entities (pipeline s 16)))))
+          (test (sprintf "#:bounce ~a (~a, ~a): back at x 57, on the floor, #:vx ~a, nothing else left on it"
+                         bounce name mode vx-after)
+                (list 57 29 vx-after #f)
+                (list (entity-ref e #:x) (entity-ref e #:y) (entity-ref e #:vx)
+                      (and (assq #:x-pass-start e) #t)))))
+      '(#f 1/2) '(0 -2)))))
+
 (test-group "contacts: a head on a ceiling slope's line touches it"
   (define (contacts tm e n . keep)
     (let loop ((s (make-scene tilemap: tm entities: (list e))) (k 0))

@@ -178,6 +178,45 @@
                         (loop (cdr vxs))))))))
    (list sl-hill45 sl-hill22) '("45 degrees" "22.5 degrees")))
 
+;; A ramp under a low flat ceiling: a 45 degree floor (tile 3, 0 -> 16,
+;; column 3, row 3) rising under solid cells whose bottom is at y 32 from
+;; column 3 on. A 24 px tall walker is lifted by the floor until its top
+;; would pass into the ceiling, at foot x 56 (head 32, foot 56); a lift
+;; that would take it there does not happen: the frame's x motion is
+;; undone, as a wall would stop it. So each walk ends at its last step
+;; where the body fits, 20 + vx * floor((36 - w/2) / vx), and no frame
+;; has the box in the ceiling or the foot off the floor.
+(define sl-low-ceiling
+  (list->tilemap '((1 1 1 1 1 1 1) (0 0 0 1 1 1 1) (0 0 0 0 0 0 0) (0 0 0 3 1 1 1) (1 1 1 1 1 1 1))
+                 slopes: '((3 0 16))))
+
+(test-group "a ramp under a low ceiling: the walker stops where it no longer fits"
+  (for-each
+   (lambda (mode)
+     (for-each
+      (lambda (pipeline name)
+        (for-each
+         (lambda (w)
+           (let walks ((vx 1) (got '()) (want '()))
+             (if (> (+ (/ w 2) vx 1) 23)
+                 (test (sprintf "~a px wide (~a, ~a): ends at its last step that fits, never in the ceiling"
+                                w name mode)
+                       (reverse want) (reverse got))
+                 (let ((fs (sl-walk pipeline sl-low-ceiling (sl-body 20 40 w 24 vx) vx 60 mode)))
+                   (walks (+ vx 1)
+                          (cons (list vx (car (list-ref fs 59))
+                                      (let every ((fs fs))
+                                        (or (null? fs)
+                                            (let ((x (car (car fs))) (y (cadr (car fs))))
+                                              (and (>= y (if (> (+ x w) 48) 32 16))
+                                                   (= (+ y 24) (sl-floor sl-low-ceiling (+ x (/ w 2)) 2))
+                                                   (every (cdr fs)))))))
+                                got)
+                          (cons (list vx (+ 20 (* vx (quotient (- 36 (/ w 2)) vx))) #t) want))))))
+         '(4 8 16)))
+      (list engine-pipeline contract-pipeline) '("engine" "readable steps")))
+   '(swept discrete)))
+
 ;; The platformer demo's hill (demo/levels/platformer.tmx, slopes.tsx: two
 ;; tiles by properties, one by its collision polygon, flipped for the way
 ;; down), walked over as the demo's player walks (2 px/frame).
