@@ -29,7 +29,7 @@
   (define known-entity-keys
     '(#:type #:id #:name #:tags #:x #:y #:width #:height #:vx #:vy #:ay
       #:gravity? #:on-ground? #:solid? #:immovable? #:one-way? #:drop-through?
-      #:frame-start #:skip-pipelines #:collision-mode #:tween #:contacts? #:contacts
+      #:frame-start #:x-pass-start #:skip-pipelines #:collision-mode #:tween #:contacts? #:contacts
       #:drag #:air-drag #:max-vx #:max-vy #:bounce
       #:climber? #:climb #:climb-speed #:climbing?
       #:group-id #:group-origin? #:group-local-x #:group-local-y
