@@ -216,6 +216,7 @@
 ;; there, 20 + vx * floor((40 - w/2) / vx). On the way the x pass may stop
 ;; the head at the ceiling's line; the foot is still raised by how far the
 ;; body moved on x, so it is never left in the floor.
+(include-relative "../../tests/walk-support.scm")
 (test-group "a tunnel narrowing from both sides, at every guaranteed walking speed"
   (define (ceiling-at hx) (cond ((< hx 48) 16) ((< hx 64) (+ 16 (- hx 48))) (else 32)))
   (define (floor-at fx) (cond ((< fx 48) 64) ((< fx 64) (- 64 (- fx 48))) (else 48)))
@@ -223,20 +224,18 @@
    (lambda (mode pipeline name)
      (for-each
       (lambda (w)
-        (let walks ((vx 1) (got '()) (want '()))
-          (if (> (+ (/ w 2) vx 1) 23)
-              (test (sprintf "~a px wide (~a, ~a): ends at its last step that fits, head and foot right every frame"
-                             w name mode)
-                    (reverse want) (reverse got))
-              (let ((fs (cs-run pipeline mode cs-tunnel (cs-body 20 40 w 24 #:vx vx #:gravity? #t) 50 #:vx vx)))
-                (walks (+ vx 1)
-                       (cons (list vx (car (cs-last fs))
-                                   (cs-all? (lambda (f) (let ((hx (+ (car f) (/ w 2))))
-                                                          (and (>= (cadr f) (ceiling-at hx))
-                                                               (= (+ (cadr f) 24) (floor-at hx)))))
-                                            fs))
-                             got)
-                       (cons (list vx (+ 20 (* vx (quotient (- 40 (/ w 2)) vx))) #t) want))))))
+        (let ((speeds (guaranteed-speeds w 24)))
+          (test (sprintf "~a px wide (~a, ~a): ends at its last step that fits, head and foot right every frame"
+                         w name mode)
+                (map (lambda (vx) (list vx (last-step 20 (- 60 (/ w 2)) vx) #t)) speeds)
+                (map (lambda (vx)
+                       (let ((fs (cs-run pipeline mode cs-tunnel (cs-body 20 40 w 24 #:vx vx #:gravity? #t) 50 #:vx vx)))
+                         (list vx (car (cs-last fs))
+                               (cs-all? (lambda (f) (let ((hx (+ (car f) (/ w 2))))
+                                                      (and (>= (cadr f) (ceiling-at hx))
+                                                           (= (+ (cadr f) 24) (floor-at hx)))))
+                                        fs))))
+                     speeds))))
       '(4 8 12 16)))))
 
 ;; The tunnel with a wall (column 4, row 2) where it gets too low: a body

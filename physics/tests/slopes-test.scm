@@ -186,6 +186,7 @@
 ;; undone, as a wall would stop it. So each walk ends at its last step
 ;; where the body fits, 20 + vx * floor((36 - w/2) / vx), and no frame
 ;; has the box in the ceiling or the foot off the floor.
+(include-relative "../../tests/walk-support.scm")
 (define sl-low-ceiling
   (list->tilemap '((1 1 1 1 1 1 1) (0 0 0 1 1 1 1) (0 0 0 0 0 0 0) (0 0 0 3 1 1 1) (1 1 1 1 1 1 1))
                  slopes: '((3 0 16))))
@@ -197,22 +198,20 @@
       (lambda (pipeline name)
         (for-each
          (lambda (w)
-           (let walks ((vx 1) (got '()) (want '()))
-             (if (> (+ (/ w 2) vx 1) 23)
-                 (test (sprintf "~a px wide (~a, ~a): ends at its last step that fits, never in the ceiling"
-                                w name mode)
-                       (reverse want) (reverse got))
-                 (let ((fs (sl-walk pipeline sl-low-ceiling (sl-body 20 40 w 24 vx) vx 60 mode)))
-                   (walks (+ vx 1)
-                          (cons (list vx (car (list-ref fs 59))
-                                      (let every ((fs fs))
-                                        (or (null? fs)
-                                            (let ((x (car (car fs))) (y (cadr (car fs))))
-                                              (and (>= y (if (> (+ x w) 48) 32 16))
-                                                   (= (+ y 24) (sl-floor sl-low-ceiling (+ x (/ w 2)) 2))
-                                                   (every (cdr fs)))))))
-                                got)
-                          (cons (list vx (+ 20 (* vx (quotient (- 36 (/ w 2)) vx))) #t) want))))))
+           (let ((speeds (guaranteed-speeds w 24)))
+             (test (sprintf "~a px wide (~a, ~a): ends at its last step that fits, never in the ceiling"
+                            w name mode)
+                   (map (lambda (vx) (list vx (last-step 20 (- 56 (/ w 2)) vx) #t)) speeds)
+                   (map (lambda (vx)
+                          (let ((fs (sl-walk pipeline sl-low-ceiling (sl-body 20 40 w 24 vx) vx 60 mode)))
+                            (list vx (car (list-ref fs 59))
+                                  (let every ((fs fs))
+                                    (or (null? fs)
+                                        (let ((x (car (car fs))) (y (cadr (car fs))))
+                                          (and (>= y (if (> (+ x w) 48) 32 16))
+                                               (= (+ y 24) (sl-floor sl-low-ceiling (+ x (/ w 2)) 2))
+                                               (every (cdr fs)))))))))
+                        speeds))))
          '(4 8 16)))
       (list engine-pipeline contract-pipeline) '("engine" "readable steps")))
    '(swept discrete)))
