@@ -345,10 +345,10 @@
                       (let-values (((bottom-cut top-cut) (cuts-at-rest tm (entity-set entity #:y stop))))
                         (solid-across? tm (num entity #:x) (num entity #:width)
                                        (+ stop top-cut) (- (+ stop h) bottom-cut)))))
-             ;; lifted by the floor into a ceiling above its head: the body
-             ;; does not fit there, and goes back to where this frame's x
-             ;; motion started, stopped on x as by a wall (by the x pass's
-             ;; stop, when it made one)
+             ;; lifted by the floor into a ceiling (at its head, or the box
+             ;; at rest into solid cells): the body does not fit there, and
+             ;; goes back to where this frame's x motion started, stopped on
+             ;; x as by a wall (by the x pass's stop, when it made one)
              (land-near-slope (entity-set* entity #:x (- (num entity #:x) mx)
                                            #:vx (if stopped-on-x? (num entity #:vx) (rebound entity (num entity #:vx))))
                               tm swept sy 0 cut climbers? head? top-cut stopped-on-x?))
@@ -357,7 +357,6 @@
 
   ;; Whether a solid cell lies in the band [top, bottom) of the columns a
   ;; box of width w at x covers.
-
   (define (solid-across? tm x w top bottom)
     (let ((tw (tilemap-tile-width tm)) (th (tilemap-tile-height tm))
           (col0 (tilemap-origin-col tm)) (row0 (tilemap-origin-row tm)))
