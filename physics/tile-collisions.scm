@@ -342,9 +342,7 @@
                   (or (let ((ceiling (head-ceiling tm (+ (num entity #:x) (/ (num entity #:width) 2))
                                                    stop (num entity #:y))))
                         (and ceiling (> ceiling stop)))
-                      (let-values (((bottom-cut top-cut) (cuts-at-rest tm (entity-set entity #:y stop))))
-                        (solid-across? tm (num entity #:x) (num entity #:width)
-                                       (+ stop top-cut) (- (+ stop h) bottom-cut)))))
+                      (lifted-into-solid? tm entity stop h)))
              ;; lifted by the floor into a ceiling (at its head, or the box
              ;; at rest into solid cells): the body does not fit there, and
              ;; goes back to where this frame's x motion started, stopped on
@@ -371,6 +369,15 @@
                (or (let rows ((r r0))
                      (and (<= r r1) (or (tilemap-solid? tm c r) (rows (+ r 1)))))
                    (cols (+ c 1))))))))
+
+  ;; Whether a body h px tall lifted to y has its box, less what its cuts
+  ;; at rest leave out, in solid cells. Most lifts clear the whole box,
+  ;; which needs no cuts; the cuts only ever narrow it.
+  (define (lifted-into-solid? tm entity y h)
+    (let ((x (num entity #:x)) (w (num entity #:width)))
+      (and (solid-across? tm x w y (+ y h))
+           (let-values (((bottom-cut top-cut) (cuts-at-rest tm (entity-set entity #:y y))))
+             (solid-across? tm x w (+ y top-cut) (- (+ y h) bottom-cut))))))
 
   ;; What a body's box leaves out at its bottom and top where it is, with
   ;; no motion: near a slope its lower corners, near a ceiling slope its
