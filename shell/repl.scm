@@ -386,12 +386,16 @@
                  (if (eq? (client-state c) 'open)
                      (loop (cdr cs))
                      (begin
-                       (c-close (client-fd c))
-                       (tell-owner! r (or (client-drop c)
-                                          "dropped a connection that had not sent the secret, to make room for a new one (repl-max-clients)"))
+                       (close-client! r c (or (client-drop c)
+                                              "dropped a connection that had not sent the secret, to make room for a new one (repl-max-clients)"))
                        (repl-clients-set! r (remove-client (repl-clients r) c))
                        #t))))
               (else (loop (cdr cs)))))))
+
+  ;; A client closed, and the owner told why.
+  (define (close-client! r c why)
+    (when (client-fd c) (c-close (client-fd c)))
+    (tell-owner! r why))
 
   (define (remove-client cs c)
     (cond ((null? cs) '())
@@ -403,11 +407,7 @@
     (when (eq? (client-state c) 'proving) (prove! r c now))
     (when (memq (client-state c) '(open closing)) (take-input! r c))
     (when (client-fd c) (flush! c))
-    (cond ((client-drop c)
-           => (lambda (why)
-                (when (client-fd c) (c-close (client-fd c)))
-                (tell-owner! r why)
-                #f))
+    (cond ((client-drop c) => (lambda (why) (close-client! r c why) #f))
           ((and (not (client-fd c)) (eq? (client-state c) 'closing)) #f)
           ((and (eq? (client-state c) 'closing) (= (client-out-bytes c) 0))
            (c-close (client-fd c))

@@ -13,3 +13,18 @@
 ;; its x is at most `last`: the last of its steps there.
 (define (last-step x0 last vx)
   (+ x0 (* vx (quotient (- last x0) vx))))
+
+;; What each walk at `speeds` should give: (vx where-it-stops #t), for a
+;; walk from x0 by a body that fits while its x is at most `last`.
+(define (walks-wanted speeds x0 last)
+  (map (lambda (vx) (list vx (last-step x0 last vx) #t)) speeds))
+
+;; What each walk gave: (vx its-last-x every-frame-ok?). walk: a speed's
+;; frames, each a list starting (x y ...); ok?: of one frame.
+(define (walks-got speeds walk ok?)
+  (map (lambda (vx)
+         (let loop ((fs (walk vx)) (all? #t))
+           (if (null? (cdr fs))
+               (list vx (car (car fs)) (and all? (ok? (car fs)) #t))
+               (loop (cdr fs) (and all? (ok? (car fs)))))))
+       speeds))

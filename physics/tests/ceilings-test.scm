@@ -227,15 +227,11 @@
         (let ((speeds (guaranteed-speeds w 24)))
           (test (sprintf "~a px wide (~a, ~a): ends at its last step that fits, head and foot right every frame"
                          w name mode)
-                (map (lambda (vx) (list vx (last-step 20 (- 60 (/ w 2)) vx) #t)) speeds)
-                (map (lambda (vx)
-                       (let ((fs (cs-run pipeline mode cs-tunnel (cs-body 20 40 w 24 #:vx vx #:gravity? #t) 50 #:vx vx)))
-                         (list vx (car (cs-last fs))
-                               (cs-all? (lambda (f) (let ((hx (+ (car f) (/ w 2))))
-                                                      (and (>= (cadr f) (ceiling-at hx))
-                                                           (= (+ (cadr f) 24) (floor-at hx)))))
-                                        fs))))
-                     speeds))))
+                (walks-wanted speeds 20 (- 60 (/ w 2)))
+                (walks-got speeds
+                           (lambda (vx) (cs-run pipeline mode cs-tunnel (cs-body 20 40 w 24 #:vx vx #:gravity? #t) 50 #:vx vx))
+                           (lambda (f) (let ((hx (+ (car f) (/ w 2))))
+                                         (and (>= (cadr f) (ceiling-at hx)) (= (+ (cadr f) 24) (floor-at hx)))))))))
       '(4 8 12 16)))))
 
 ;; The tunnel with a wall (column 4, row 2) where it gets too low: a body
